@@ -1,0 +1,38 @@
+// oceanref: the command-line front end, a thin layer over the library.
+// Exit codes: 0 success, 1 failed check, 2 bad input (one line naming the flag and range).
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <sstream>
+
+#include "cli/spectrum_command.h"
+#include "cli/text.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"oceanref: deterministic CPU reference renderer for spectral ocean surfaces",
+               "oceanref"};
+  app.require_subcommand(1);
+  const auto run_spectrum = oceanref::cli::add_spectrum_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "oceanref: " << e.what() << " (see oceanref --help)\n";
+    return 2;
+  }
+  try {
+    // Output is assembled in memory and written only when complete: no partial tables.
+    std::ostringstream out;
+    if (app.got_subcommand("spectrum")) run_spectrum(out);
+    std::cout << out.str() << std::flush;
+    return std::cout ? 0 : 2;
+  } catch (const oceanref::cli::UsageError& e) {
+    std::cerr << "oceanref: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "oceanref: " << e.what() << '\n';
+    return 2;
+  }
+}

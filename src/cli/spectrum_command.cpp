@@ -1,0 +1,288 @@
+#include "cli/spectrum_command.h"
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cli/text.h"
+#include "spectrum/model.h"
+#include "spectrum/moments.h"
+
+namespace oceanref::cli {
+
+namespace {
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+// Raw flag values as typed; parsed and validated in run().
+struct SpectrumFlags {
+  std::string model, wind_speed = "10", fetch = "100000", depth = "inf", spreading, swell = "0",
+                     spread_blend = "1", wind_direction = "0", dispersion, gamma, alpha,
+                     peak_omega, sigma_low, sigma_high, pm_wind = "u10",
+                     tma_attenuation = "exact", suppression = "0.001", gravity = "9.81",
+                     k_max, omega, theta, wavevector;
+  bool moments = false;
+  bool printed = false;
+  bool allow_extrapolation = false;
+};
+
+// Scene/library setting key → the flag that sets it.
+std::string flag_for(const std::string& key) {
+  static const std::map<std::string, std::string> flags{
+      {"wind_speed", "--wind-speed"},     {"fetch", "--fetch"},
+      {"depth", "--depth"},               {"gravity", "--gravity"},
+      {"wind_direction", "--wind-direction-deg"}, {"swell", "--swell"},
+      {"spread_blend", "--spread-blend"}, {"gamma", "--gamma"},
+      {"alpha", "--alpha"},               {"peak_frequency", "--peak-omega"},
+      {"sigma_low", "--sigma-low"},       {"sigma_high", "--sigma-high"},
+      {"phillips_suppression", "--phillips-suppression"}};
+  const auto it = flags.find(key);
+  return it == flags.end() ? key : it->second;
+}
+
+std::optional<double> optional_number(const std::string& flag, const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  return parse_number(flag, text);
+}
+
+SpectrumSettings settings_from(const SpectrumFlags& f) {
+  SpectrumSettings s;
+  const auto model = parse_spectrum_model(f.model);
+  if (!model) {
+    throw UsageError("--model", "expected one of phillips, pierson-moskowitz, jonswap, tma, "
+                                "donelan, unified; got '" + f.model + "'");
+  }
+  s.model = *model;
+  s.wind_speed = parse_number("--wind-speed", f.wind_speed);
+  s.fetch = parse_number("--fetch", f.fetch);
+  s.depth = parse_number("--depth", f.depth, true);
+  s.gravity = parse_number("--gravity", f.gravity);
+  const double direction_deg = parse_number("--wind-direction-deg", f.wind_direction);
+  if (std::fabs(direction_deg) > 720.0) {
+    throw UsageError("--wind-direction-deg", "must be in [-720, 720] degrees, got " +
+                                                 f.wind_direction);
+  }
+  s.wind_direction = direction_deg * kDegree;
+  if (!f.spreading.empty()) {
+    s.spreading = parse_spreading_model(f.spreading);
+    if (!s.spreading) {
+      throw UsageError("--spreading", "expected one of cos2, cos4, mitsuyasu, hasselmann, "
+                                      "mastin, gamper, donelan, donelan-banner, unified; got '" +
+                                          f.spreading + "'");
+    }
+  }
+  if (!f.dispersion.empty()) {
+    s.dispersion = parse_dispersion(f.dispersion);
+    if (!s.dispersion) {
+      throw UsageError("--dispersion", "expected one of deep, finite-depth, capillary; got '" +
+                                           f.dispersion + "'");
+    }
+  }
+  s.swell = parse_number("--swell", f.swell);
+  s.spread_blend = parse_number("--spread-blend", f.spread_blend);
+  s.gamma = optional_number("--gamma", f.gamma);
+  s.alpha = optional_number("--alpha", f.alpha);
+  s.peak_frequency = optional_number("--peak-omega", f.peak_omega);
+  s.sigma_low = optional_number("--sigma-low", f.sigma_low);
+  s.sigma_high = optional_number("--sigma-high", f.sigma_high);
+  if (f.pm_wind == "u10") {
+    s.pm_wind = PiersonMoskowitzWind::u10;
+  } else if (f.pm_wind == "u19.5") {
+    s.pm_wind = PiersonMoskowitzWind::u19_5;
+  } else {
+    throw UsageError("--pm-wind", "expected u10 or u19.5, got '" + f.pm_wind + "'");
+  }
+  if (f.tma_attenuation == "exact") {
+    s.depth_attenuation = DepthAttenuation::exact;
+  } else if (f.tma_attenuation == "thompson-vincent") {
+    s.depth_attenuation = DepthAttenuation::thompson_vincent;
+  } else {
+    throw UsageError("--tma-attenuation",
+                     "expected exact or thompson-vincent, got '" + f.tma_attenuation + "'");
+  }
+  s.phillips_suppression = parse_number("--phillips-suppression", f.suppression);
+  s.printed_spreading = f.printed;
+  s.allow_extrapolation = f.allow_extrapolation;
+  return s;
+}
+
+Spectrum spectrum_from(const SpectrumFlags& f) {
+  const SpectrumSettings settings = settings_from(f);
+  try {
+    return make_spectrum(settings);
+  } catch (const SettingError& e) {
+    throw UsageError(flag_for(e.key()), e.what());
+  }
+}
+
+void write_omega_table(std::ostream& out, const Spectrum& s, const std::vector<double>& omegas) {
+  out << "omega,S\n";
+  for (const double w : omegas) {
+    out << format_number(w) << ',' << format_number(frequency_spectrum(s, w)) << '\n';
+  }
+}
+
+void write_directional_table(std::ostream& out, const Spectrum& s,
+                             const std::vector<double>& omegas,
+                             const std::vector<double>& thetas_deg) {
+  out << "omega,theta_deg,S,D\n";
+  for (const double w : omegas) {
+    const double spectrum = frequency_spectrum(s, w);
+    for (const double t : thetas_deg) {
+      out << format_number(w) << ',' << format_number(t) << ',' << format_number(spectrum) << ','
+          << format_number(spreading_at_frequency(s, w, t * kDegree)) << '\n';
+    }
+  }
+}
+
+void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::string& list) {
+  struct Wavevector { double kx, kz; };
+  std::vector<Wavevector> ks;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = list.find(',', start);
+    const std::string item = list.substr(start, comma - start);
+    const std::size_t colon = item.find(':');
+    if (colon == std::string::npos) {
+      throw UsageError("--wavevector", "expected kx:kz pairs separated by commas, got '" + item +
+                                           "'");
+    }
+    ks.push_back({parse_number("--wavevector", item.substr(0, colon)),
+                  parse_number("--wavevector", item.substr(colon + 1))});
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  out << "kx,kz,Theta\n";
+  for (const Wavevector& k : ks) {
+    out << format_number(k.kx) << ',' << format_number(k.kz) << ','
+        << format_number(wavevector_spectrum(s, k.kx, k.kz)) << '\n';
+  }
+}
+
+void write_moments(std::ostream& out, const Spectrum& s, const std::string& k_max_text) {
+  const double k_max =
+      k_max_text.empty() ? kDefaultMaxWavenumber : parse_number("--k-max", k_max_text, true);
+  if (!(k_max > s.peak_wavenumber)) {
+    throw UsageError("--k-max", "must exceed the peak wavenumber k_p = " +
+                                    format_number(s.peak_wavenumber) + " rad/m, got " +
+                                    k_max_text);
+  }
+  SpectralMoments m;
+  try {
+    m = spectral_moments(s, k_max);
+  } catch (const std::runtime_error& e) {
+    throw UsageError("--k-max", std::string(e.what()) + " (k_max = " + format_number(k_max) +
+                                    ")");
+  }
+  out << "m0,Hs,mss_x,mss_z,mss\n"
+      << format_number(m.m0) << ',' << format_number(m.significant_wave_height) << ','
+      << format_number(m.mss_x) << ',' << format_number(m.mss_z) << ',' << format_number(m.mss)
+      << '\n';
+}
+}  // namespace
+
+std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
+  auto flags = std::make_shared<SpectrumFlags>();
+  CLI::App* cmd = app.add_subcommand(
+      "spectrum",
+      "Evaluate a wave spectrum: S(omega), D(omega,theta), Theta(k) or its moments, as CSV with "
+      "17 significant digits.");
+  cmd->add_option("--model", flags->model,
+                  "phillips | pierson-moskowitz | jonswap | tma | donelan | unified")
+      ->required();
+  cmd->add_option("--wind-speed", flags->wind_speed,
+                  "U10 [m/s] in [0.1, 60] (U19.5 with --pm-wind u19.5)")
+      ->capture_default_str();
+  cmd->add_option("--fetch", flags->fetch, "fetch F [m] in [1, 1e7]")->capture_default_str();
+  cmd->add_option("--depth", flags->depth, "water depth h [m] in [0.01, inf]")
+      ->capture_default_str();
+  cmd->add_option("--spreading", flags->spreading,
+                  "cos2 | cos4 | mitsuyasu | hasselmann | mastin | gamper | donelan | "
+                  "donelan-banner | unified (default: phillips cos2, pierson-moskowitz and "
+                  "jonswap hasselmann, tma donelan-banner, donelan donelan, unified unified)");
+  cmd->add_option("--swell", flags->swell,
+                  "Horvath swell xi in [0, 1], adds 16 tanh(omega_p/omega) xi^2 to the cos-2s "
+                  "spread (cos-2s family only)")
+      ->capture_default_str();
+  cmd->add_option("--spread-blend", flags->spread_blend,
+                  "blend b in [0, 1]: (1-b) forward cos^2 + b cos-2s (cos-2s family only)")
+      ->capture_default_str();
+  cmd->add_option("--wind-direction-deg", flags->wind_direction,
+                  "wind direction angle [deg] in [-720, 720]; wind vector (cos, sin) in (x, z)")
+      ->capture_default_str();
+  cmd->add_option("--dispersion", flags->dispersion,
+                  "deep | finite-depth | capillary (default: tma finite-depth, unified "
+                  "capillary, others deep)");
+  cmd->add_option("--gamma", flags->gamma, "JONSWAP/TMA peak enhancement gamma in [1, 20] (3.3)");
+  cmd->add_option("--alpha", flags->alpha,
+                  "equilibrium range alpha (pierson-moskowitz, jonswap, tma) or Phillips "
+                  "amplitude A (default 0.00405 = alpha_PM/2), in (0, 10]");
+  cmd->add_option("--peak-omega", flags->peak_omega,
+                  "override the peak angular frequency omega_p [rad/s] (pierson-moskowitz, "
+                  "jonswap, tma)");
+  cmd->add_option("--sigma-low", flags->sigma_low, "JONSWAP/TMA peak width below omega_p (0.07)");
+  cmd->add_option("--sigma-high", flags->sigma_high, "JONSWAP/TMA peak width above omega_p (0.09)");
+  cmd->add_option("--pm-wind", flags->pm_wind,
+                  "u10 (Gamper eq. 3.37, 3.40) | u19.5 (eq. 3.36, 3.38): which wind "
+                  "--wind-speed is for pierson-moskowitz")
+      ->capture_default_str();
+  cmd->add_option("--tma-attenuation", flags->tma_attenuation,
+                  "exact (Kitaigorodskii, Vincevicius eq. 1.9) | thompson-vincent (eq. 1.10)")
+      ->capture_default_str();
+  cmd->add_option("--phillips-suppression", flags->suppression,
+                  "Phillips small-wave suppression l/L in [0, 0.1]")
+      ->capture_default_str();
+  cmd->add_option("--gravity", flags->gravity, "g [m/s^2] in [0.1, 100]")->capture_default_str();
+  cmd->add_flag("--printed-spreading", flags->printed,
+                "use cos2, cos4 and donelan exactly as printed (integral over theta is pi, "
+                "3pi/4, tanh(beta pi)) instead of normalized to 1");
+  cmd->add_flag("--allow-extrapolation", flags->allow_extrapolation,
+                "use a model outside its fitted range (JONSWAP chi < 1e4; Donelan and Unified "
+                "inverse wave age clamped to their ranges; Unified alpha_m clamped to >= 0)");
+  auto* omega = cmd->add_option("--omega", flags->omega,
+                                "w1,w2,... [rad/s] -> CSV omega,S (S in m^2 s)");
+  cmd->add_option("--theta-deg", flags->theta,
+                  "t1,t2,... [deg] with --omega -> CSV omega,theta_deg,S,D (every pair; the "
+                  "directional spectrum is S*D)")
+      ->needs(omega);
+  auto* wavevector = cmd->add_option("--wavevector", flags->wavevector,
+                                     "kx:kz,... [rad/m] -> CSV kx,kz,Theta (Theta in m^4)");
+  auto* moments = cmd->add_flag(
+      "--moments", flags->moments,
+      "CSV m0,Hs,mss_x,mss_z,mss by adaptive quadrature over 0 < k <= --k-max");
+  cmd->add_option("--k-max", flags->k_max,
+                  "upper wavenumber of --moments [rad/m] or inf (default 363.19 = 2pi/1.73 cm, "
+                  "Gamper 4.4)")
+      ->needs(moments);
+  omega->excludes(wavevector)->excludes(moments);
+  wavevector->excludes(moments);
+
+  return [flags, cmd](std::ostream& out) {
+    if (flags->omega.empty() && flags->wavevector.empty() && !flags->moments) {
+      throw UsageError("spectrum", "give one of --omega, --wavevector or --moments");
+    }
+    const Spectrum s = spectrum_from(*flags);
+    if (!flags->omega.empty()) {
+      const std::vector<double> omegas = parse_number_list("--omega", flags->omega);
+      for (const double w : omegas) {
+        if (w < 0.0) throw UsageError("--omega", "frequencies must be >= 0, got " +
+                                                     format_number(w));
+      }
+      if (flags->theta.empty()) {
+        write_omega_table(out, s, omegas);
+      } else {
+        write_directional_table(out, s, omegas, parse_number_list("--theta-deg", flags->theta));
+      }
+    } else if (!flags->wavevector.empty()) {
+      write_wavevector_table(out, s, flags->wavevector);
+    } else {
+      write_moments(out, s, flags->k_max);
+    }
+    (void)cmd;
+  };
+}
+
+}  // namespace oceanref::cli

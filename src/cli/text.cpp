@@ -1,0 +1,43 @@
+#include "cli/text.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace oceanref::cli {
+
+double parse_number(const std::string& flag, std::string_view text, bool allow_infinity) {
+  const std::string s(text);
+  if (allow_infinity && (s == "inf" || s == "infinity")) return HUGE_VAL;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  const bool whole = !s.empty() && end == s.c_str() + s.size();
+  if (!whole || !std::isfinite(v) || errno == ERANGE) {
+    throw UsageError(flag, "expected a finite number" +
+                               std::string(allow_infinity ? " or inf" : "") + ", got '" + s +
+                               "'");
+  }
+  return v;
+}
+
+std::vector<double> parse_number_list(const std::string& flag, std::string_view text) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    values.push_back(parse_number(flag, text.substr(start, comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return values;
+}
+
+std::string format_number(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+}  // namespace oceanref::cli

@@ -1,0 +1,29 @@
+// Strict number parsing and exact number printing for the command line.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace oceanref::cli {
+
+// A bad command-line value: `flag` is the flag as typed (e.g. "--wind-speed").
+class UsageError : public std::invalid_argument {
+ public:
+  UsageError(std::string flag, const std::string& message)
+      : std::invalid_argument(flag + ": " + message), flag_(std::move(flag)) {}
+  const std::string& flag() const { return flag_; }
+
+ private:
+  std::string flag_;
+};
+
+// The whole text must be one finite number ("inf" accepted when allow_infinity).
+double parse_number(const std::string& flag, std::string_view text, bool allow_infinity = false);
+// Comma-separated finite numbers, at least one.
+std::vector<double> parse_number_list(const std::string& flag, std::string_view text);
+// 17 significant digits (round-trips every double), "inf"/"-inf"/"nan" for the rest.
+std::string format_number(double v);
+
+}  // namespace oceanref::cli

@@ -1,0 +1,94 @@
+#include "spectrum/moments.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace oceanref {
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+
+void require_converged(const QuadratureResult& r, const char* what) {
+  if (r.converged) return;
+  throw std::runtime_error(std::string(what) +
+                           " did not converge (the integral may diverge: spectra with a k⁻³ "
+                           "tail need a finite k_max for the slope moments)");
+}
+}  // namespace
+
+std::vector<double> wavenumber_breakpoints(const Spectrum& s, double k_max) {
+  std::vector<double> b{0.0};
+  for (int j = -6; j <= 12; ++j) {
+    const double k = std::ldexp(s.peak_wavenumber, j);
+    if (k < k_max) b.push_back(k);
+  }
+  if (s.model == SpectrumModel::unified && s.unified.capillary_wavenumber < k_max) {
+    b.push_back(s.unified.capillary_wavenumber);  // the gravity-capillary peak at k_m
+    std::sort(b.begin(), b.end());
+  }
+  b.push_back(k_max);
+  return b;
+}
+
+QuadratureResult integrate_over_direction(const Spectrum& s, double k,
+                                          const std::function<double(double)>& weight,
+                                          const QuadratureTolerance& tolerance) {
+  const double phi = s.wind_direction;
+  // Integrate over θ' = θ − φ ∈ [−π, π], split at the peak and at ±π/2.
+  const std::vector<double> b{-kPi, -0.5 * kPi, 0.0, 0.5 * kPi, kPi};
+  return integrate(
+      [&](double t) { return weight(t + phi) * spreading_at_wavenumber(s, k, t + phi); }, b,
+      tolerance);
+}
+
+QuadratureResult zeroth_moment(const Spectrum& s, double k_max,
+                               const QuadratureTolerance& tolerance) {
+  const QuadratureResult m0 = integrate([&](double k) { return wavenumber_spectrum(s, k); },
+                                        wavenumber_breakpoints(s, k_max), tolerance);
+  require_converged(m0, "m0");
+  return m0;
+}
+
+SpectralMoments spectral_moments(const Spectrum& s, double k_max,
+                                 const QuadratureTolerance& tolerance) {
+  SpectralMoments m;
+  const std::vector<double> b = wavenumber_breakpoints(s, k_max);
+  const QuadratureResult m0 = zeroth_moment(s, k_max, tolerance);
+  // mss_x = ∫ k² Ψ(k) [∫ cos²θ D dθ] dk and likewise with sin²θ (eq. A.1 in polar form).
+  QuadratureTolerance inner = tolerance;
+  inner.relative = tolerance.relative * 0.1;
+  auto slope_moment = [&](bool along_x) {
+    return integrate(
+        [&](double k) {
+          const double psi = wavenumber_spectrum(s, k);
+          if (psi == 0.0) return 0.0;
+          const QuadratureResult d = integrate_over_direction(
+              s, k,
+              [along_x](double theta) {
+                const double c = along_x ? std::cos(theta) : std::sin(theta);
+                return c * c;
+              },
+              inner);
+          return k * k * psi * d.value;
+        },
+        b, tolerance);
+  };
+  const QuadratureResult mx = slope_moment(true);
+  require_converged(mx, "mss_x");
+  const QuadratureResult mz = slope_moment(false);
+  require_converged(mz, "mss_z");
+  m.m0 = m0.value;
+  m.m0_error = m0.error;
+  m.significant_wave_height = 4.0 * std::sqrt(m0.value);
+  m.mss_x = mx.value;
+  m.mss_x_error = mx.error;
+  m.mss_z = mz.value;
+  m.mss_z_error = mz.error;
+  m.mss = mx.value + mz.value;
+  return m;
+}
+
+}  // namespace oceanref

@@ -1,0 +1,43 @@
+// Spectral moments of the continuous spectrum by adaptive quadrature (Gamper appendix A.1):
+//   m0 = ∫Ψ dk [m²], Hs = 4√m0 [m],
+//   mss_x = ∬ k_x² Θ dk, mss_z = ∬ k_z² Θ dk, mss = mss_x + mss_z = ∫ k² Ψ dk  (eq. A.1–A.2).
+#pragma once
+
+#include "spectrum/model.h"
+#include "spectrum/quadrature.h"
+
+namespace oceanref {
+
+// λ_min = 1.73 cm floor for spectra without capillary physics (Gamper §4.4): k = 2π/λ_min.
+inline constexpr double kDefaultMaxWavenumber = 2.0 * 3.141592653589793 / 0.0173;
+
+struct SpectralMoments {
+  double m0 = 0.0;
+  double significant_wave_height = 0.0;
+  double mss_x = 0.0;
+  double mss_z = 0.0;
+  double mss = 0.0;
+  double m0_error = 0.0;   // quadrature error estimates (absolute)
+  double mss_x_error = 0.0;
+  double mss_z_error = 0.0;
+};
+
+// Breakpoints for integrals over k ∈ (0, k_max]: 0, k_p·2^j around the peak, k_max (or +∞).
+std::vector<double> wavenumber_breakpoints(const Spectrum& s, double k_max);
+
+// m0 = ∫Ψ dk over k ∈ (0, k_max] (k_max may be +∞). Throws std::runtime_error if the
+// quadrature does not converge.
+QuadratureResult zeroth_moment(const Spectrum& s, double k_max,
+                               const QuadratureTolerance& tolerance = {});
+
+// Integrates over k ∈ (0, k_max] (k_max may be +∞). Throws std::runtime_error naming the moment
+// when a quadrature does not converge (e.g. mss of a k⁻³ tail with k_max = ∞ diverges).
+SpectralMoments spectral_moments(const Spectrum& s, double k_max,
+                                 const QuadratureTolerance& tolerance = {});
+
+// ∫_{−π}^{π} g(θ) D(k, θ) dθ with θ the absolute direction, split at the wind direction.
+QuadratureResult integrate_over_direction(const Spectrum& s, double k,
+                                          const std::function<double(double)>& weight,
+                                          const QuadratureTolerance& tolerance = {});
+
+}  // namespace oceanref

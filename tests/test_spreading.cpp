@@ -1,0 +1,146 @@
+// Directional spreading: unit integrals, printed integrals, closed forms and branch points.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "spectrum/model.h"
+#include "spectrum/moments.h"
+#include "spectrum/spreading.h"
+
+using namespace oceanref;
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+constexpr double g = 9.81;
+
+// ∫_{−π}^{π} D(ω, θ) dθ by adaptive quadrature at 1e−13 (splits at the peak and ±π/2).
+double integral_over_theta(const Spectrum& s, double omega) {
+  const double k = wavenumber_from_frequency(s.dispersion, omega);
+  return integrate_over_direction(s, k, [](double) { return 1.0; }, {1e-13, 0.0, 4000}).value;
+}
+
+const std::vector<SpreadingModel> kAll{
+    SpreadingModel::cos2,   SpreadingModel::cos4,    SpreadingModel::mitsuyasu,
+    SpreadingModel::hasselmann, SpreadingModel::mastin, SpreadingModel::gamper,
+    SpreadingModel::donelan, SpreadingModel::donelan_banner, SpreadingModel::unified};
+}  // namespace
+
+TEST_CASE("every normalized spreading integrates to 1 over (-pi, pi]") {
+  // Sweep ω/ω_p across every branch, winds, swell and blend; quadrature error ≤ 1e−13, so a
+  // deviation above 1e−9 is a normalization error, not a numerical one.
+  for (const SpreadingModel m : kAll) {
+    for (const double u : {2.0, 10.0, 40.0}) {
+      for (const double swell : {0.0, 0.5, 1.0}) {
+        for (const double blend : {1.0, 0.5, 0.0}) {
+          const bool cos_2s = is_cos_2s_family(m);
+          if (!cos_2s && (swell != 0.0 || blend != 1.0)) continue;
+          SpectrumSettings in;
+          in.model = SpectrumModel::pierson_moskowitz;
+          in.wind_speed = u;
+          in.spreading = m;
+          in.swell = swell;
+          in.spread_blend = blend;
+          in.wind_direction = 0.7;
+          const Spectrum s = make_spectrum(in);
+          for (const double r : {0.05, 0.3, 0.56, 0.8, 0.95, 1.0, 1.3, 1.6, 2.5, 8.0, 40.0}) {
+            CAPTURE(to_string(m));
+            CAPTURE(u);
+            CAPTURE(swell);
+            CAPTURE(blend);
+            CAPTURE(r);
+            CHECK(std::fabs(integral_over_theta(s, r * s.peak_frequency) - 1.0) < 1e-9);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("printed cos2, cos4 and Donelan integrate to pi, 3pi/4 and tanh(beta pi)") {
+  // Gamper §3.4 reports π and 3π/4 for |k̂·ŵ|² and |k̂·ŵ|⁴; eq. 3.64 integrates to tanh(βπ).
+  CHECK(cosine_power_integral(2.0) == doctest::Approx(kPi).epsilon(1e-15));
+  CHECK(cosine_power_integral(4.0) == doctest::Approx(0.75 * kPi).epsilon(1e-15));
+  for (const SpreadingModel m : {SpreadingModel::cos2, SpreadingModel::cos4,
+                                 SpreadingModel::donelan}) {
+    SpectrumSettings in;
+    in.model = SpectrumModel::jonswap;
+    in.spreading = m;
+    in.printed_spreading = true;
+    const Spectrum s = make_spectrum(in);
+    for (const double r : {0.3, 0.8, 1.2, 3.0}) {
+      const double w = r * s.peak_frequency;
+      const double k = wavenumber_from_frequency(s.dispersion, w);
+      CHECK(std::fabs(integral_over_theta(s, w) - spreading_integral(s, w, k)) < 1e-10);
+    }
+  }
+  CHECK(spreading_integral(make_spectrum({}), 1.0, 1.0) == 1.0);
+}
+
+TEST_CASE("cos-2s normalization: closed form, s = 0 uniform, no overflow for large s") {
+  // Q(1) = 2/(π)·1/2 = 1/π... from Q(s) = 2^{2s−1}/π Γ²(s+1)/Γ(2s+1): Q(1) = 2/π · 1/2 = 1/π.
+  CHECK(cos_2s_normalization(1.0) == doctest::Approx(1.0 / kPi).epsilon(1e-14));
+  CHECK(cos_2s_normalization(0.0) == doctest::Approx(0.5 / kPi).epsilon(1e-15));
+  CHECK(cos_2s_spreading(1.0, 0.0) == doctest::Approx(0.5 / kPi).epsilon(1e-15));
+  // Γ(2s+1) overflows a double at s ≈ 86; lgamma keeps D finite far beyond. For large s,
+  // Q(s) → √(s/π)/2 (Stirling): relative gap ~1/(8s).
+  for (const double s : {100.0, 1e3, 1e5}) {
+    const double q = cos_2s_normalization(s);
+    CHECK(std::isfinite(q));
+    CHECK(std::fabs(q / (0.5 * std::sqrt(s / kPi)) - 1.0) < 1.0 / (4.0 * s));
+  }
+}
+
+TEST_CASE("spread laws: published constants and branch points") {
+  // Mitsuyasu s is continuous at ω_p (both branches give s_p).
+  const double sp = mitsuyasu_peak_spread(1.0, 10.0, g);
+  CHECK(sp == doctest::Approx(11.5 * std::pow(10.0 / g, -2.5)).epsilon(1e-15));
+  CHECK(std::fabs(mitsuyasu_spread(1.0 - 1e-12, 1.0, sp) - mitsuyasu_spread(1.0, 1.0, sp)) <
+        1e-9);
+  // Hasselmann et al. 1980 and Gamper eq. 3.57 jump from 6.97 to 9.77 at ω_p by design.
+  CHECK(hasselmann_spread(1.0 - 1e-12, 1.0, 10.0, g) == doctest::Approx(6.97).epsilon(1e-9));
+  CHECK(hasselmann_spread(1.0, 1.0, 10.0, g) == 9.77);
+  CHECK(gamper_spread(1.0 - 1e-12, 1.0) == doctest::Approx(6.97).epsilon(1e-9));
+  CHECK(gamper_spread(1.0, 1.0) == 9.77);
+  // μ = −2.33 − 1.45(Uω_p/g − 1.17): at Uω_p/g = 1.17, μ = −2.33 exactly.
+  CHECK(hasselmann_spread(2.0, 1.17 * g / 10.0 * 1.0, 10.0, g) / 9.77 ==
+        doctest::Approx(std::pow(2.0 / (1.17 * g / 10.0), -2.33)).epsilon(1e-12));
+  // Mastin: 9.77 on both sides of f_m (continuous).
+  CHECK(std::fabs(mastin_spread(1.0 - 1e-12, 1.0) - mastin_spread(1.0, 1.0)) < 1e-9);
+  // Horvath swell: 16ξ² tanh(ω_p/ω), 16 tanh(1) ξ² at the peak.
+  CHECK(horvath_swell_spread(1.0, 1.0, 0.5) == doctest::Approx(4.0 * std::tanh(1.0)));
+}
+
+TEST_CASE("Donelan beta: the published constants jump by < 1.3%; Donelan-Banner is continuous") {
+  auto jump = [](double (*beta)(double), double r) {
+    const double below = beta(r * (1.0 - 1e-12));
+    const double above = beta(r);
+    return std::fabs(above - below) / above;
+  };
+  // Gamper eq. 3.65 as printed: 2.61·0.56^1.3 = 1.2287 vs 1.24 (0.9%), 2.4417 vs 2.4372 at 0.95
+  // (0.2%), 1.2376 vs 1.24 at 1.6 (0.2%): inherent to the 3-digit constants.
+  for (const double r : {0.56, 0.95, 1.6}) CHECK(jump(donelan_beta, r) < 0.013);
+  // Donelan–Banner with ε = −0.4 + 0.8393 exp(−0.567 ln(r²)): 10^ε(1.6) = 1.2376 meets
+  // 2.28·1.6^−1.3 to 1e−3; reading ln(r)² instead would give 2.19, a 77% jump.
+  CHECK(jump(donelan_banner_beta, 1.6) < 1e-3);
+  CHECK(jump(donelan_banner_beta, 0.95) < 0.002);
+  // β → 0 as ω → 0: the sech² spreading tends to the uniform 1/(2π).
+  CHECK(sech2_spreading(2.0, donelan_banner_beta(1e-9)) ==
+        doctest::Approx(0.5 / kPi).epsilon(1e-9));
+}
+
+TEST_CASE("unified spreading: centrosymmetric, 1 + Delta cos 2theta, Delta in (0, 1)") {
+  SpectrumSettings in;
+  in.model = SpectrumModel::unified;
+  const Spectrum s = make_spectrum(in);
+  for (const double k : {0.01, 0.1, 1.0, 50.0, 370.0, 5000.0}) {
+    for (const double t : {0.0, 0.4, 1.3, 2.9}) {
+      CHECK(spreading_at_wavenumber(s, k, t) ==
+            doctest::Approx(spreading_at_wavenumber(s, k, t + kPi)).epsilon(1e-14));
+    }
+    const double delta = 2.0 * kPi * spreading_at_wavenumber(s, k, 0.0) - 1.0;
+    CHECK(delta > 0.0);
+    CHECK(delta < 1.0);
+  }
+}
