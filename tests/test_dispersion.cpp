@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "spectrum/dispersion.h"
@@ -77,4 +78,17 @@ TEST_CASE("k(omega) inverts omega(k) for every relation, depth and wavenumber") 
     }
   }
   CHECK(wavenumber_from_frequency(finite_depth(1.0), 0.0) == 0.0);
+}
+
+TEST_CASE("tiny frequencies: the shallow-water limit k = omega/sqrt(gh) holds down to subnormals") {
+  // ω(k) = k·c(k) keeps ω > 0 where g·k·tanh(kh) would underflow; the inverse must terminate
+  // and return the shallow limit (relative error of the limit ~ (kh)²/6, far below 1e-14 here).
+  for (const Dispersion& d : {finite_depth(0.01), finite_depth(1.0), capillary(3.0)}) {
+    for (const double w : {1e-300, 1e-200, 1e-100, 1e-20}) {
+      CHECK(relative(wavenumber_from_frequency(d, w), w / std::sqrt(9.81 * d.depth)) < 1e-14);
+      CHECK(relative(angular_frequency(d, w / std::sqrt(9.81 * d.depth)), w) < 1e-14);
+    }
+    CHECK(wavenumber_from_frequency(d, std::numeric_limits<double>::denorm_min()) >= 0.0);
+  }
+  CHECK(wavenumber_from_frequency(deep, 1e-300) == 0.0);  // ω²/g underflows
 }

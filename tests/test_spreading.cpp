@@ -130,7 +130,7 @@ TEST_CASE("Donelan beta: the published constants jump by < 1.3%; Donelan-Banner 
         doctest::Approx(0.5 / kPi).epsilon(1e-9));
 }
 
-TEST_CASE("unified spreading: centrosymmetric, 1 + Delta cos 2theta, Delta in (0, 1)") {
+TEST_CASE("unified spreading: centrosymmetric, 1 + Delta cos 2theta, Delta in (0, 1]") {
   SpectrumSettings in;
   in.model = SpectrumModel::unified;
   const Spectrum s = make_spectrum(in);
@@ -141,6 +141,6 @@ TEST_CASE("unified spreading: centrosymmetric, 1 + Delta cos 2theta, Delta in (0
     }
     const double delta = 2.0 * kPi * spreading_at_wavenumber(s, k, 0.0) - 1.0;
     CHECK(delta > 0.0);
-    CHECK(delta < 1.0);
+    CHECK(delta <= 1.0);  // tanh saturates to 1 in double far from the peak
   }
 }

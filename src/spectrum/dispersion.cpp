@@ -34,34 +34,46 @@ double depth_factor_derivative(double kh) {
   return 4.0 * e / ((1.0 + e) * (1.0 + e));
 }
 
+namespace {
+// tanh(kh)/k = h·tanh(kh)/kh [m], exact as kh → 0 (no underflow of k·h for tiny k).
+double depth_factor_over_k(const Dispersion& d, double k) {
+  const double kh = k * d.depth;
+  return kh < 1e-8 ? d.depth : depth_factor(kh) / k;
+}
+}  // namespace
+
+// c = ω/k = √(g·(1 + (k/k_m)²)·tanh(kh)/k); the k → 0 limits: √(gh) with depth, +∞ without;
+// k → ∞: 0, or +∞ with capillarity.
+double phase_speed(const Dispersion& d, double k) {
+  if (k <= 0.0) return has_depth(d) ? std::sqrt(d.gravity * d.depth) : kInf;
+  if (std::isinf(k)) return d.kind == DispersionKind::capillary ? kInf : 0.0;
+  if (!has_depth(d)) return std::sqrt(d.gravity * capillary_factor(d, k) / k);
+  return std::sqrt(d.gravity * capillary_factor(d, k) * depth_factor_over_k(d, k));
+}
+
 // ω² = g·k·(1 + (k/k_m)²)·tanh(kh)  (Alimardanov eq. 2.7–2.9; Gamper §3.4 with k_m = 370 rad/m).
-// Deep: tanh → 1 and no capillary term; finite depth: no capillary term.
+// Deep: tanh → 1 and no capillary term; finite depth: no capillary term. With a depth,
+// ω = k·c(k), so that ω stays > 0 for every k > 0 (g·k·tanh(kh) would underflow).
 double angular_frequency(const Dispersion& d, double k) {
   if (k <= 0.0) return 0.0;
-  const double t = has_depth(d) ? depth_factor(k * d.depth) : 1.0;
-  return std::sqrt(d.gravity * k * capillary_factor(d, k) * t);
+  if (std::isinf(k)) return kInf;
+  if (has_depth(d)) return k * phase_speed(d, k);
+  return std::sqrt(d.gravity * k * capillary_factor(d, k));
 }
 
 // dω/dk = g·[c'(k)·tanh(kh) + k·c(k)·h·sech²(kh)] / (2ω), with c the capillary factor
-// (derivative of the relation above). The k → 0 limits: √(gh) with depth, +∞ without.
+// (derivative of the relation above), evaluated as g·[c'·tanh(kh)/k + c·h·sech²(kh)] / (2ω/k).
+// The k → 0 limits: √(gh) with depth, +∞ without.
 double group_velocity(const Dispersion& d, double k) {
   if (k <= 0.0) return has_depth(d) ? std::sqrt(d.gravity * d.depth) : kInf;
-  const double w = angular_frequency(d, k);
-  if (!has_depth(d)) return d.gravity * capillary_factor_derivative(d, k) / (2.0 * w);
-  const double kh = k * d.depth;
-  const double dw2 = d.gravity * (capillary_factor_derivative(d, k) * depth_factor(kh) +
-                                  k * capillary_factor(d, k) * d.depth * depth_factor_derivative(kh));
-  return dw2 / (2.0 * w);
-}
-
-// c = ω/k = √(g·(1 + (k/k_m)²)·tanh(kh)/k); the k → 0 limits: √(gh) with depth, +∞ without.
-double phase_speed(const Dispersion& d, double k) {
-  if (k <= 0.0) return has_depth(d) ? std::sqrt(d.gravity * d.depth) : kInf;
-  if (!has_depth(d)) return std::sqrt(d.gravity * capillary_factor(d, k) / k);
-  const double kh = k * d.depth;
-  // tanh(kh)/k = h·tanh(kh)/kh, exact as kh → 0.
-  const double t_over_k = kh < 1e-8 ? d.depth : depth_factor(kh) / k;
-  return std::sqrt(d.gravity * capillary_factor(d, k) * t_over_k);
+  if (std::isinf(k)) return phase_speed(d, k);  // the k → ∞ limits: 0, or ∞ with capillarity
+  if (!has_depth(d)) {
+    return d.gravity * capillary_factor_derivative(d, k) / (2.0 * angular_frequency(d, k));
+  }
+  const double dw2_over_k =
+      d.gravity * (capillary_factor_derivative(d, k) * depth_factor_over_k(d, k) +
+                   capillary_factor(d, k) * d.depth * depth_factor_derivative(k * d.depth));
+  return dw2_over_k / (2.0 * phase_speed(d, k));
 }
 
 // Inverse of ω(k): Newton's method kept inside a shrinking bracket [lo, hi] (ω is strictly
@@ -74,6 +86,7 @@ double wavenumber_from_frequency(const Dispersion& d, double omega) {
   double lo = 0.0;
   double hi = k_deep;
   if (has_depth(d)) hi = std::fmax(hi, omega / std::sqrt(d.gravity * d.depth));
+  if (hi == 0.0) return 0.0;  // ω so small that k ≈ ω/√(gh) or ω²/g underflows to 0
   while (angular_frequency(d, hi) < omega) {
     lo = hi;
     hi *= 2.0;
