@@ -19,6 +19,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    const auto named = [&](const CLI::App* sub) { return sub->check_name(argv[1]); };
+    if (argc > 1 && argv[1][0] != '-' && app.get_subcommands(named).empty()) {
+      std::cerr << "oceanref: unknown subcommand '" << argv[1] << "' (see oceanref --help)\n";
+      return 2;
+    }
     std::cerr << "oceanref: " << e.what() << " (see oceanref --help)\n";
     return 2;
   }

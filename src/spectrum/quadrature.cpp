@@ -74,24 +74,24 @@ QuadratureResult integrate(const std::function<double(double)>& f,
     gauss_kronrod(f, p, result.evaluations);
     pieces.push_back(p);
   }
-  auto totals = [&] {
-    double value = 0.0;
-    double error = 0.0;
+  // Sums in the fixed order of the pieces, so the result does not depend on the refinement path.
+  const auto sum_pieces = [&] {
+    result.value = 0.0;
+    result.error = 0.0;
     for (const Piece& p : pieces) {
-      value += p.value;
-      error += p.error;
+      result.value += p.value;
+      result.error += p.error;
     }
-    return std::pair{value, error};
   };
-  auto [value, error] = totals();
-  auto accepted = [&] {
-    return std::isfinite(value) && std::isfinite(error) &&
-           error <= std::fmax(tolerance.absolute, tolerance.relative * std::fabs(value));
+  const auto accepted = [&] {
+    return std::isfinite(result.value) && std::isfinite(result.error) &&
+           result.error <=
+               std::fmax(tolerance.absolute, tolerance.relative * std::fabs(result.value));
   };
+  sum_pieces();
   while (!accepted()) {
-    if (static_cast<int>(pieces.size()) >= tolerance.max_intervals || !std::isfinite(error)) {
-      result.value = value;
-      result.error = error;
+    if (static_cast<int>(pieces.size()) >= tolerance.max_intervals ||
+        !std::isfinite(result.error)) {
       return result;  // not converged
     }
     std::size_t worst = 0;
@@ -101,21 +101,15 @@ QuadratureResult integrate(const std::function<double(double)>& f,
     Piece left = pieces[worst];
     Piece right = pieces[worst];
     const double mid = 0.5 * (left.a + left.b);
-    if (!(mid > left.a && mid < left.b)) {  // the interval cannot be split any further
-      result.value = value;
-      result.error = error;
-      return result;
-    }
+    if (!(mid > left.a && mid < left.b)) return result;  // cannot split: not converged
     left.b = mid;
     right.a = mid;
     gauss_kronrod(f, left, result.evaluations);
     gauss_kronrod(f, right, result.evaluations);
     pieces[worst] = left;
     pieces.insert(pieces.begin() + static_cast<std::ptrdiff_t>(worst) + 1, right);
-    std::tie(value, error) = totals();
+    sum_pieces();
   }
-  result.value = value;
-  result.error = error;
   result.converged = true;
   return result;
 }

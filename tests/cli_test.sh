@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# Command-line contract of `oceanref` (DESIGN.md): exit codes, one-line errors naming the flag
+# and its range, CSV headers, 17 significant digits, nothing on stdout after an error, and
+# byte-identical output across runs.
+#
+#   tests/cli_test.sh PATH/TO/oceanref
+set -uo pipefail
+
+bin=${1:?usage: cli_test.sh PATH/TO/oceanref}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+checks=0
+
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+
+# expect CODE PATTERN ARGS... : exit code CODE; stderr (for CODE 2: exactly one line) matches the
+# extended regex PATTERN; on an error, stdout is empty.
+expect() {
+  local code=$1 pattern=$2
+  shift 2
+  checks=$((checks + 1))
+  "$bin" "$@" >"$tmp/out" 2>"$tmp/err"
+  local got=$?
+  if [ "$got" -ne "$code" ]; then
+    fail "oceanref $* exited $got, expected $code; stderr: $(cat "$tmp/err")"
+    return
+  fi
+  if [ "$code" -ne 0 ]; then
+    [ -s "$tmp/out" ] && fail "oceanref $*: wrote to stdout after an error"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "oceanref $*: error is not one line: $(cat "$tmp/err")"
+    grep -Eq -- "$pattern" "$tmp/err" || fail "oceanref $*: stderr '$(cat "$tmp/err")' !~ /$pattern/"
+  elif [ -n "$pattern" ]; then
+    grep -Eq -- "$pattern" "$tmp/out" || fail "oceanref $*: stdout does not match /$pattern/"
+  fi
+}
+
+# --- help is true and exits 0 -------------------------------------------------------------
+expect 0 'spectrum' --help
+expect 0 '--moments' spectrum --help
+for flag in --model --wind-speed --fetch --depth --spreading --swell --spread-blend \
+  --wind-direction-deg --dispersion --gamma --omega --theta-deg --wavevector --moments; do
+  grep -q -- "$flag" "$tmp/out" || fail "spectrum --help does not list $flag"
+done
+
+# --- outputs: headers, row counts, 17 significant digits ------------------------------------
+expect 0 '^omega,S$' spectrum --model pierson-moskowitz --omega 0.5,0.8766,2
+[ "$(wc -l <"$tmp/out")" -eq 4 ] || fail "--omega with 3 values did not print 3 rows"
+# 0.1·… digits: a value printed with %.17g has 17 significant digits unless it is exact.
+grep -Eq '^2,0\.[0-9]{16,17}' "$tmp/out" || fail "S(2) is not printed with 17 significant digits"
+expect 0 '^omega,theta_deg,S,D$' spectrum --model jonswap --omega 0.5,1 --theta-deg 0,45,90
+[ "$(wc -l <"$tmp/out")" -eq 7 ] || fail "--omega × --theta-deg did not print every pair"
+expect 0 '^kx,kz,Theta$' spectrum --model unified --wavevector 0.1:0,0:0.1,-3:4
+[ "$(wc -l <"$tmp/out")" -eq 4 ] || fail "--wavevector did not print one row per pair"
+expect 0 '^m0,Hs,mss_x,mss_z,mss$' spectrum --model pierson-moskowitz --moments
+# PM at U10 = 10 m/s: Hs = 0.21·(1.026·10)²/9.81 = 2.2535 m (Gamper eq. 3.41); our quadrature
+# of the spectrum gives 2.2450 m (the 0.21 is itself a rounded constant, 0.4% agreement).
+awk -F, 'NR==2 { exit !($2 > 2.24 && $2 < 2.25) }' "$tmp/out" || fail "PM Hs at 10 m/s is not 2.245 m"
+
+# --- bad input: exit 2, one line naming the flag and the range ------------------------------
+expect 2 '--wind-speed.*\[0\.1, 60\]' spectrum --model jonswap --wind-speed 75 --omega 1
+expect 2 '--wind-speed.*finite number' spectrum --model jonswap --wind-speed abc --omega 1
+expect 2 '--fetch.*\[1, 1e\+07\]' spectrum --model pierson-moskowitz --fetch 0.5 --omega 1
+expect 2 '--fetch.*allow-extrapolation' spectrum --model jonswap --fetch 1e6 --omega 1
+expect 0 '' spectrum --model jonswap --fetch 1e6 --allow-extrapolation --omega 1
+expect 2 '--depth.*\[0\.01, inf\]' spectrum --model tma --depth 0.001 --omega 1
+expect 2 '--model.*phillips, pierson-moskowitz' spectrum --model foo --omega 1
+expect 2 '--spreading.*donelan-banner' spectrum --model jonswap --spreading cos3 --omega 1
+expect 2 '--dispersion.*finite-depth' spectrum --model jonswap --dispersion shallow --omega 1
+expect 2 '--swell.*\[0, 1\]' spectrum --model jonswap --swell 2 --omega 1
+expect 2 '--gamma.*\[1, 20\]' spectrum --model jonswap --gamma 0.5 --omega 1
+expect 2 '--omega.*finite number' spectrum --model jonswap --omega 1,nan
+expect 2 '--omega.*finite number' spectrum --model jonswap --omega 1,,2
+expect 2 '--wavevector.*kx:kz' spectrum --model jonswap --wavevector 1:2,3
+expect 2 '--omega.*--moments' spectrum --model jonswap --omega 1 --moments
+expect 2 'give one of --omega, --wavevector or --moments' spectrum --model jonswap
+expect 2 '--model' spectrum --omega 1
+expect 2 '--bogus' spectrum --model jonswap --bogus --omega 1
+expect 2 "unknown subcommand 'frobnicate'" frobnicate
+expect 2 'subcommand' # no arguments at all
+
+# --- determinism: identical bytes across runs -------------------------------------------------
+args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)
+"$bin" "${args[@]}" >"$tmp/a" && "$bin" "${args[@]}" >"$tmp/b"
+checks=$((checks + 1))
+cmp -s "$tmp/a" "$tmp/b" || fail "two runs of oceanref ${args[*]} differ"
+
+echo "cli_test: $checks checks, $failures failed"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The README's second command: builds and runs every test.
+#
+#   tools/test.sh              ctest (unit, property and CLI tests) on the gcc build in build/,
+#                              then the gcc/clang determinism comparison (tools/compare_compilers.sh)
+#   tools/test.sh --sanitize   ctest on an AddressSanitizer + UndefinedBehaviorSanitizer build
+#                              in build-asan/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if [ "${1:-}" = "--sanitize" ]; then
+  bash tools/build.sh build-asan -DOCEANREF_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug
+  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
+  ctest --test-dir build-asan --output-on-failure
+  exit
+fi
+bash tools/build.sh build
+ctest --test-dir build --output-on-failure
+bash tools/compare_compilers.sh
