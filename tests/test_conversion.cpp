@@ -48,8 +48,9 @@ double wavevector_integral(const Spectrum& s) {
 }
 }  // namespace
 
-TEST_CASE("energy is conserved between S(omega), Psi(k) and Theta(k) for every model and "
-          "dispersion") {
+TEST_CASE(
+    "energy is conserved between S(omega), Psi(k) and Theta(k) for every model and "
+    "dispersion") {
   // Quadrature tolerance 1e−11 (relative) on each side; a mismatch above 1e−7 would be a
   // missing or wrong Jacobian (the error Gamper §5.2 describes), which is O(1).
   for (const SpectrumModel m :

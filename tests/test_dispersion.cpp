@@ -11,9 +11,15 @@ using namespace oceanref;
 
 namespace {
 const Dispersion deep{DispersionKind::deep, 9.81, HUGE_VAL, 370.0};
-Dispersion finite_depth(double h) { return {DispersionKind::finite_depth, 9.81, h, 370.0}; }
-Dispersion capillary(double h = HUGE_VAL) { return {DispersionKind::capillary, 9.81, h, 370.0}; }
-double relative(double a, double b) { return std::fabs(a - b) / std::fabs(b); }
+Dispersion finite_depth(double h) {
+  return {DispersionKind::finite_depth, 9.81, h, 370.0};
+}
+Dispersion capillary(double h = HUGE_VAL) {
+  return {DispersionKind::capillary, 9.81, h, 370.0};
+}
+double relative(double a, double b) {
+  return std::fabs(a - b) / std::fabs(b);
+}
 }  // namespace
 
 TEST_CASE("deep water: omega = sqrt(gk), c = omega/k, group velocity = c/2") {
@@ -30,7 +36,8 @@ TEST_CASE("deep water: omega = sqrt(gk), c = omega/k, group velocity = c/2") {
 TEST_CASE("finite depth tends to deep water as kh grows and to sqrt(gh) k as kh -> 0") {
   // kh ≥ 20: tanh(kh) = 1 − 2e^{−40} = 1 in double, so the relations agree to rounding.
   for (const double k : {0.02, 0.5, 7.0}) {
-    CHECK(relative(angular_frequency(finite_depth(1000.0 / k), k), angular_frequency(deep, k)) < 1e-15);
+    CHECK(relative(angular_frequency(finite_depth(1000.0 / k), k), angular_frequency(deep, k)) <
+          1e-15);
     CHECK(relative(group_velocity(finite_depth(1000.0 / k), k), group_velocity(deep, k)) < 1e-15);
   }
   // Shallow: ω = k√(gh)·(1 − (kh)²/6 + …); at kh = 1e−4 the relative gap is 1.7e−9.
@@ -59,7 +66,8 @@ TEST_CASE("gravity-capillary: deep-water limit and Lamb's minimum phase speed c_
 
 TEST_CASE("group velocity is the derivative of omega(k)") {
   // Central differences with step 1e−5·k: truncation ~1e−10, rounding ~1e−11 relative.
-  for (const Dispersion& d : {deep, finite_depth(0.3), finite_depth(20.0), capillary(), capillary(0.05)}) {
+  for (const Dispersion& d :
+       {deep, finite_depth(0.3), finite_depth(20.0), capillary(), capillary(0.05)}) {
     for (const double k : {0.003, 0.1, 2.0, 50.0, 400.0, 3000.0}) {
       const double step = 1e-5 * k;
       const double numeric =
@@ -70,8 +78,8 @@ TEST_CASE("group velocity is the derivative of omega(k)") {
 }
 
 TEST_CASE("k(omega) inverts omega(k) for every relation, depth and wavenumber") {
-  for (const Dispersion& d : {deep, finite_depth(0.01), finite_depth(0.5), finite_depth(40.0), capillary(),
-                              capillary(0.2)}) {
+  for (const Dispersion& d : {deep, finite_depth(0.01), finite_depth(0.5), finite_depth(40.0),
+                              capillary(), capillary(0.2)}) {
     for (double k = 1e-5; k < 1e5; k *= 3.7) {
       const double w = angular_frequency(d, k);
       CHECK(relative(wavenumber_from_frequency(d, w), k) < 1e-14);

@@ -10,14 +10,18 @@
 using namespace oceanref;
 
 namespace {
-bool finite_non_negative(double v) { return std::isfinite(v) && v >= 0.0; }
+bool finite_non_negative(double v) {
+  return std::isfinite(v) && v >= 0.0;
+}
 }  // namespace
 
 TEST_CASE("extremes sweep: U10 0.1..60 m/s, fetch 1..1e7 m, depth 0.01 m..inf, omega/k 0..inf") {
   const double inf = std::numeric_limits<double>::infinity();
   const double tiny = std::numeric_limits<double>::denorm_min();
-  const std::vector<double> samples{0.0, tiny, 1e-300, 1e-10, 1e-3, 0.5, 1.0, 7.0,
-                                    1e3, 1e10, 1e300, std::numeric_limits<double>::max(), inf};
+  const std::vector<double> samples{0.0,  tiny, 1e-300, 1e-10,
+                                    1e-3, 0.5,  1.0,    7.0,
+                                    1e3,  1e10, 1e300,  std::numeric_limits<double>::max(),
+                                    inf};
   int evaluated = 0;
   for (const SpectrumModel m :
        {SpectrumModel::phillips, SpectrumModel::pierson_moskowitz, SpectrumModel::jonswap,

@@ -24,8 +24,7 @@ TEST_CASE("KissFFT runs in double precision and matches a direct DFT") {
     std::complex<double> sum = 0.0;
     for (int i = 0; i < n; ++i) {
       const auto& x = in[static_cast<std::size_t>(i)];
-      sum += std::complex<double>(x.r, x.i) *
-             std::polar(1.0, -2.0 * std::numbers::pi * f * i / n);
+      sum += std::complex<double>(x.r, x.i) * std::polar(1.0, -2.0 * std::numbers::pi * f * i / n);
     }
     const auto& y = out[static_cast<std::size_t>(f)];
     CHECK(std::abs(std::complex<double>(y.r, y.i) - sum) < 1e-12);

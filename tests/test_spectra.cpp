@@ -14,7 +14,9 @@ using namespace oceanref;
 
 namespace {
 constexpr double g = 9.81;
-double relative(double a, double b) { return std::fabs(a - b) / std::fabs(b); }
+double relative(double a, double b) {
+  return std::fabs(a - b) / std::fabs(b);
+}
 
 Spectrum make(SpectrumModel model, double u = 10.0, double fetch = 5.0e4) {
   SpectrumSettings s;
@@ -57,8 +59,8 @@ TEST_CASE("Pierson-Moskowitz and JONSWAP and Donelan peak at omega_p") {
       in.fetch = 2.0e4;
       in.allow_extrapolation = true;
       const Spectrum s = make_spectrum(in);
-      CHECK(relative(argmax(s, 0.5 * s.peak_frequency, 2.0 * s.peak_frequency),
-                     s.peak_frequency) < 1e-6);
+      CHECK(relative(argmax(s, 0.5 * s.peak_frequency, 2.0 * s.peak_frequency), s.peak_frequency) <
+            1e-6);
     }
   }
 }
@@ -93,8 +95,8 @@ TEST_CASE("JONSWAP energy relative to PM matches the DNV-RP-C205 factor 1/(1 - 0
     j.model = SpectrumModel::jonswap;
     j.gamma = gamma;
     const Spectrum jonswap = make_spectrum(j);
-    const double ratio = m0_of(jonswap) /
-                         (jonswap.alpha * g * g / (5.0 * std::pow(jonswap.peak_frequency, 4.0)));
+    const double ratio =
+        m0_of(jonswap) / (jonswap.alpha * g * g / (5.0 * std::pow(jonswap.peak_frequency, 4.0)));
     CHECK(relative(ratio, 1.0 / (1.0 - 0.287 * std::log(gamma))) < 0.005);
   }
 }

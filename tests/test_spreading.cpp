@@ -22,9 +22,9 @@ double integral_over_theta(const Spectrum& s, double omega) {
 }
 
 const std::vector<SpreadingModel> kAll{
-    SpreadingModel::cos2,   SpreadingModel::cos4,    SpreadingModel::mitsuyasu,
-    SpreadingModel::hasselmann, SpreadingModel::mastin, SpreadingModel::gamper,
-    SpreadingModel::donelan, SpreadingModel::donelan_banner, SpreadingModel::unified};
+    SpreadingModel::cos2,       SpreadingModel::cos4,           SpreadingModel::mitsuyasu,
+    SpreadingModel::hasselmann, SpreadingModel::mastin,         SpreadingModel::gamper,
+    SpreadingModel::donelan,    SpreadingModel::donelan_banner, SpreadingModel::unified};
 }  // namespace
 
 TEST_CASE("every normalized spreading integrates to 1 over (-pi, pi]") {
@@ -62,8 +62,8 @@ TEST_CASE("printed cos2, cos4 and Donelan integrate to pi, 3pi/4 and tanh(beta p
   // Gamper §3.4 reports π and 3π/4 for |k̂·ŵ|² and |k̂·ŵ|⁴; eq. 3.64 integrates to tanh(βπ).
   CHECK(cosine_power_integral(2.0) == doctest::Approx(kPi).epsilon(1e-15));
   CHECK(cosine_power_integral(4.0) == doctest::Approx(0.75 * kPi).epsilon(1e-15));
-  for (const SpreadingModel m : {SpreadingModel::cos2, SpreadingModel::cos4,
-                                 SpreadingModel::donelan}) {
+  for (const SpreadingModel m :
+       {SpreadingModel::cos2, SpreadingModel::cos4, SpreadingModel::donelan}) {
     SpectrumSettings in;
     in.model = SpectrumModel::jonswap;
     in.spreading = m;
@@ -96,8 +96,7 @@ TEST_CASE("spread laws: published constants and branch points") {
   // Mitsuyasu s is continuous at ω_p (both branches give s_p).
   const double sp = mitsuyasu_peak_spread(1.0, 10.0, g);
   CHECK(sp == doctest::Approx(11.5 * std::pow(10.0 / g, -2.5)).epsilon(1e-15));
-  CHECK(std::fabs(mitsuyasu_spread(1.0 - 1e-12, 1.0, sp) - mitsuyasu_spread(1.0, 1.0, sp)) <
-        1e-9);
+  CHECK(std::fabs(mitsuyasu_spread(1.0 - 1e-12, 1.0, sp) - mitsuyasu_spread(1.0, 1.0, sp)) < 1e-9);
   // Hasselmann et al. 1980 and Gamper eq. 3.57 jump from 6.97 to 9.77 at ω_p by design.
   CHECK(hasselmann_spread(1.0 - 1e-12, 1.0, 10.0, g) == doctest::Approx(6.97).epsilon(1e-9));
   CHECK(hasselmann_spread(1.0, 1.0, 10.0, g) == 9.77);

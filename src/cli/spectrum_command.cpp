@@ -20,10 +20,9 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 // Raw flag values as typed; parsed and validated in run().
 struct SpectrumFlags {
   std::string model, wind_speed = "10", fetch = "100000", depth = "inf", spreading, swell = "0",
-                     spread_blend = "1", wind_direction = "0", dispersion, gamma, alpha,
-                     peak_omega, sigma_low, sigma_high, pm_wind = "u10",
-                     tma_attenuation = "exact", suppression = "0.001", gravity = "9.81",
-                     k_max, omega, theta, wavevector;
+                     spread_blend = "1", wind_direction = "0", dispersion, gamma, alpha, peak_omega,
+                     sigma_low, sigma_high, pm_wind = "u10", tma_attenuation = "exact",
+                     suppression = "0.001", gravity = "9.81", k_max, omega, theta, wavevector;
   bool moments = false;
   bool printed = false;
   bool allow_extrapolation = false;
@@ -32,12 +31,18 @@ struct SpectrumFlags {
 // Scene/library setting key → the flag that sets it.
 std::string flag_for(const std::string& key) {
   static const std::map<std::string, std::string> flags{
-      {"wind_speed", "--wind-speed"},     {"fetch", "--fetch"},
-      {"depth", "--depth"},               {"gravity", "--gravity"},
-      {"wind_direction", "--wind-direction-deg"}, {"swell", "--swell"},
-      {"spread_blend", "--spread-blend"}, {"gamma", "--gamma"},
-      {"alpha", "--alpha"},               {"peak_frequency", "--peak-omega"},
-      {"sigma_low", "--sigma-low"},       {"sigma_high", "--sigma-high"},
+      {"wind_speed", "--wind-speed"},
+      {"fetch", "--fetch"},
+      {"depth", "--depth"},
+      {"gravity", "--gravity"},
+      {"wind_direction", "--wind-direction-deg"},
+      {"swell", "--swell"},
+      {"spread_blend", "--spread-blend"},
+      {"gamma", "--gamma"},
+      {"alpha", "--alpha"},
+      {"peak_frequency", "--peak-omega"},
+      {"sigma_low", "--sigma-low"},
+      {"sigma_high", "--sigma-high"},
       {"phillips_suppression", "--phillips-suppression"}};
   const auto it = flags.find(key);
   return it == flags.end() ? key : it->second;
@@ -52,8 +57,10 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
   SpectrumSettings s;
   const auto model = parse_spectrum_model(f.model);
   if (!model) {
-    throw UsageError("--model", "expected one of phillips, pierson-moskowitz, jonswap, tma, "
-                                "donelan, unified; got '" + f.model + "'");
+    throw UsageError("--model",
+                     "expected one of phillips, pierson-moskowitz, jonswap, tma, "
+                     "donelan, unified; got '" +
+                         f.model + "'");
   }
   s.model = *model;
   s.wind_speed = parse_number("--wind-speed", f.wind_speed);
@@ -62,23 +69,24 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
   s.gravity = parse_number("--gravity", f.gravity);
   const double direction_deg = parse_number("--wind-direction-deg", f.wind_direction);
   if (std::fabs(direction_deg) > 720.0) {
-    throw UsageError("--wind-direction-deg", "must be in [-720, 720] degrees, got " +
-                                                 f.wind_direction);
+    throw UsageError("--wind-direction-deg",
+                     "must be in [-720, 720] degrees, got " + f.wind_direction);
   }
   s.wind_direction = direction_deg * kDegree;
   if (!f.spreading.empty()) {
     s.spreading = parse_spreading_model(f.spreading);
     if (!s.spreading) {
-      throw UsageError("--spreading", "expected one of cos2, cos4, mitsuyasu, hasselmann, "
-                                      "mastin, gamper, donelan, donelan-banner, unified; got '" +
-                                          f.spreading + "'");
+      throw UsageError("--spreading",
+                       "expected one of cos2, cos4, mitsuyasu, hasselmann, "
+                       "mastin, gamper, donelan, donelan-banner, unified; got '" +
+                           f.spreading + "'");
     }
   }
   if (!f.dispersion.empty()) {
     s.dispersion = parse_dispersion(f.dispersion);
     if (!s.dispersion) {
-      throw UsageError("--dispersion", "expected one of deep, finite-depth, capillary; got '" +
-                                           f.dispersion + "'");
+      throw UsageError("--dispersion",
+                       "expected one of deep, finite-depth, capillary; got '" + f.dispersion + "'");
     }
   }
   s.swell = parse_number("--swell", f.swell);
@@ -139,7 +147,9 @@ void write_directional_table(std::ostream& out, const Spectrum& s,
 }
 
 void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::string& list) {
-  struct Wavevector { double kx, kz; };
+  struct Wavevector {
+    double kx, kz;
+  };
   std::vector<Wavevector> ks;
   std::size_t start = 0;
   while (true) {
@@ -147,8 +157,8 @@ void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::str
     const std::string item = list.substr(start, comma - start);
     const std::size_t colon = item.find(':');
     if (colon == std::string::npos) {
-      throw UsageError("--wavevector", "expected kx:kz pairs separated by commas, got '" + item +
-                                           "'");
+      throw UsageError("--wavevector",
+                       "expected kx:kz pairs separated by commas, got '" + item + "'");
     }
     ks.push_back({parse_number("--wavevector", item.substr(0, colon)),
                   parse_number("--wavevector", item.substr(colon + 1))});
@@ -167,15 +177,13 @@ void write_moments(std::ostream& out, const Spectrum& s, const std::string& k_ma
       k_max_text.empty() ? kDefaultMaxWavenumber : parse_number("--k-max", k_max_text, true);
   if (!(k_max > s.peak_wavenumber)) {
     throw UsageError("--k-max", "must exceed the peak wavenumber k_p = " +
-                                    format_number(s.peak_wavenumber) + " rad/m, got " +
-                                    k_max_text);
+                                    format_number(s.peak_wavenumber) + " rad/m, got " + k_max_text);
   }
   SpectralMoments m;
   try {
     m = spectral_moments(s, k_max);
   } catch (const std::runtime_error& e) {
-    throw UsageError("--k-max", std::string(e.what()) + " (k_max = " + format_number(k_max) +
-                                    ")");
+    throw UsageError("--k-max", std::string(e.what()) + " (k_max = " + format_number(k_max) + ")");
   }
   out << "m0,Hs,mss_x,mss_z,mss\n"
       << format_number(m.m0) << ',' << format_number(m.significant_wave_height) << ','
@@ -242,17 +250,17 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
   cmd->add_flag("--allow-extrapolation", flags->allow_extrapolation,
                 "use a model outside its fitted range (JONSWAP chi < 1e4; Donelan and Unified "
                 "inverse wave age clamped to their ranges; Unified alpha_m clamped to >= 0)");
-  auto* omega = cmd->add_option("--omega", flags->omega,
-                                "w1,w2,... [rad/s] -> CSV omega,S (S in m^2 s)");
+  auto* omega =
+      cmd->add_option("--omega", flags->omega, "w1,w2,... [rad/s] -> CSV omega,S (S in m^2 s)");
   cmd->add_option("--theta-deg", flags->theta,
                   "t1,t2,... [deg] with --omega -> CSV omega,theta_deg,S,D (every pair; the "
                   "directional spectrum is S*D)")
       ->needs(omega);
   auto* wavevector = cmd->add_option("--wavevector", flags->wavevector,
                                      "kx:kz,... [rad/m] -> CSV kx,kz,Theta (Theta in m^4)");
-  auto* moments = cmd->add_flag(
-      "--moments", flags->moments,
-      "CSV m0,Hs,mss_x,mss_z,mss by adaptive quadrature over 0 < k <= --k-max");
+  auto* moments =
+      cmd->add_flag("--moments", flags->moments,
+                    "CSV m0,Hs,mss_x,mss_z,mss by adaptive quadrature over 0 < k <= --k-max");
   cmd->add_option("--k-max", flags->k_max,
                   "upper wavenumber of --moments [rad/m] or inf (default 363.19 = 2pi/1.73 cm, "
                   "Gamper 4.4)")
@@ -268,8 +276,8 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
     if (!flags->omega.empty()) {
       const std::vector<double> omegas = parse_number_list("--omega", flags->omega);
       for (const double w : omegas) {
-        if (w < 0.0) throw UsageError("--omega", "frequencies must be >= 0, got " +
-                                                     format_number(w));
+        if (w < 0.0)
+          throw UsageError("--omega", "frequencies must be >= 0, got " + format_number(w));
       }
       if (flags->theta.empty()) {
         write_omega_table(out, s, omegas);

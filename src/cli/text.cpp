@@ -16,8 +16,7 @@ double parse_number(const std::string& flag, std::string_view text, bool allow_i
   const bool whole = !s.empty() && end == s.c_str() + s.size();
   if (!whole || !std::isfinite(v) || errno == ERANGE) {
     throw UsageError(flag, "expected a finite number" +
-                               std::string(allow_infinity ? " or inf" : "") + ", got '" + s +
-                               "'");
+                               std::string(allow_infinity ? " or inf" : "") + ", got '" + s + "'");
   }
   return v;
 }

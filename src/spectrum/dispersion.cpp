@@ -26,7 +26,9 @@ double capillary_factor_derivative(const Dispersion& d, double k) {
 }  // namespace
 
 // tanh(x) for x ≥ 0; tanh(∞) = 1.
-double depth_factor(double kh) { return std::isinf(kh) ? 1.0 : std::tanh(kh); }
+double depth_factor(double kh) {
+  return std::isinf(kh) ? 1.0 : std::tanh(kh);
+}
 
 // sech²(x) = 4e^{−2x}/(1 + e^{−2x})² for x ≥ 0: no overflow of cosh for large x.
 double depth_factor_derivative(double kh) {

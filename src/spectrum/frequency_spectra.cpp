@@ -10,9 +10,15 @@ namespace oceanref {
 namespace {
 // exp(x) with x ≤ −745 returning exactly 0, so that prefactor·exp(x) is 0, not 0·∞ = NaN,
 // when a prefactor like ω⁻⁵ overflows as ω → 0 (exp underflows to 0 below −745 anyway).
-double exp_or_zero(double x) { return x < -745.0 ? 0.0 : std::exp(x); }
-double pow4(double x) { return (x * x) * (x * x); }
-double pow5(double x) { return pow4(x) * x; }
+double exp_or_zero(double x) {
+  return x < -745.0 ? 0.0 : std::exp(x);
+}
+double pow4(double x) {
+  return (x * x) * (x * x);
+}
+double pow5(double x) {
+  return pow4(x) * x;
+}
 }  // namespace
 
 // Θ(ω) = αg²/ω⁵ · exp[−β (g/(U19.5 ω))⁴]  (Gamper eq. 3.36, β = 0.74).
@@ -29,7 +35,9 @@ double pierson_moskowitz_peak_frequency_u19_5(double u19_5, double g) {
 }
 
 // ω_p ≈ 0.855 g/U10  (Gamper eq. 3.40).
-double pierson_moskowitz_peak_frequency_u10(double u10, double g) { return 0.855 * g / u10; }
+double pierson_moskowitz_peak_frequency_u10(double u10, double g) {
+  return 0.855 * g / u10;
+}
 
 // Θ(ω) = αg²/ω⁵ · exp[−5/4 (ω_p/ω)⁴]  (Gamper eq. 3.37).
 double pierson_moskowitz(double omega, double alpha, double omega_p, double g) {
@@ -45,7 +53,9 @@ double dimensionless_fetch(double fetch, double wind_speed, double g) {
 }
 
 // ν = 3.5 χ^−0.33  (Gamper eq. 3.52).
-double jonswap_dimensionless_peak_frequency(double chi) { return 3.5 * std::pow(chi, -0.33); }
+double jonswap_dimensionless_peak_frequency(double chi) {
+  return 3.5 * std::pow(chi, -0.33);
+}
 
 // ω_p = 2π g ν / U10  (Gamper eq. 3.53).
 double peak_frequency_from_dimensionless(double nu, double wind_speed, double g) {
@@ -53,7 +63,9 @@ double peak_frequency_from_dimensionless(double nu, double wind_speed, double g)
 }
 
 // α = 0.076 χ^−0.22  (Gamper eq. 3.54).
-double jonswap_alpha(double chi) { return 0.076 * std::pow(chi, -0.22); }
+double jonswap_alpha(double chi) {
+  return 0.076 * std::pow(chi, -0.22);
+}
 
 // σ = 0.07 for ω ≤ ω_p, 0.09 above (Gamper eq. 3.51; values overridable).
 double jonswap_peak_width(double omega, double omega_p, double sigma_low, double sigma_high) {
@@ -105,7 +117,9 @@ double thompson_vincent_depth_attenuation(double omega, double depth, double g) 
 }
 
 // Ω_c = 11.6 χ^−0.23, unclamped  (Gamper eq. 3.67).
-double donelan_inverse_wave_age(double chi) { return 11.6 * std::pow(chi, -0.23); }
+double donelan_inverse_wave_age(double chi) {
+  return 11.6 * std::pow(chi, -0.23);
+}
 
 // ω_p = Ω_c g / U_c  (Gamper eq. 3.66).
 double donelan_peak_frequency(double inverse_wave_age, double wind_speed, double g) {
@@ -123,7 +137,9 @@ double donelan_sigma(double inverse_wave_age) {
 }
 
 // α = 0.006 Ω_c^0.55  (Gamper eq. 3.68).
-double donelan_alpha(double inverse_wave_age) { return 0.006 * std::pow(inverse_wave_age, 0.55); }
+double donelan_alpha(double inverse_wave_age) {
+  return 0.006 * std::pow(inverse_wave_age, 0.55);
+}
 
 // Θ(ω) = αg²ω⁻⁵ (ω/ω_p) exp[−(ω_p/ω)⁴] γ^r  (Gamper eq. 3.68).
 double donelan(double omega, double alpha, double omega_p, double gamma, double sigma, double g) {

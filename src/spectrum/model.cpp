@@ -31,8 +31,8 @@ void require_range(const char* key, double value, double lo, double hi, const ch
 }
 void require_positive(const char* key, double value, double hi, const char* unit) {
   if (value > 0.0 && value <= hi) return;
-  throw SettingError(key, std::string("must be in (0, ") + number(hi) + "]" + unit + ", got " +
-                              number(value));
+  throw SettingError(
+      key, std::string("must be in (0, ") + number(hi) + "]" + unit + ", got " + number(value));
 }
 
 std::string extrapolation_hint() {
@@ -68,11 +68,11 @@ void resolve_frequency_model(const SpectrumSettings& in, Spectrum& s) {
     case SpectrumModel::tma: {
       const double chi = dimensionless_fetch(in.fetch, u, g);
       if (fetch_needed && chi >= kJonswapMaxFetch && !in.allow_extrapolation) {
-        throw SettingError("fetch", "JONSWAP is fitted for dimensionless fetch gF/U10² < 1e4 "
-                                    "(Gamper eq. 3.52), i.e. fetch < " +
-                                        number(kJonswapMaxFetch * u * u / g) + " m at U10 = " +
-                                        number(u) + " m/s; got " + number(in.fetch) + " m" +
-                                        extrapolation_hint());
+        throw SettingError("fetch",
+                           "JONSWAP is fitted for dimensionless fetch gF/U10² < 1e4 "
+                           "(Gamper eq. 3.52), i.e. fetch < " +
+                               number(kJonswapMaxFetch * u * u / g) + " m at U10 = " + number(u) +
+                               " m/s; got " + number(in.fetch) + " m" + extrapolation_hint());
       }
       s.alpha = jonswap_alpha(chi);
       s.peak_frequency =
@@ -88,15 +88,15 @@ void resolve_frequency_model(const SpectrumSettings& in, Spectrum& s) {
       double omega_c = donelan_inverse_wave_age(chi);
       if (!(omega_c > kDonelanMinInverseWaveAge && omega_c < kDonelanMaxInverseWaveAge)) {
         if (!in.allow_extrapolation) {
-          throw SettingError("fetch",
-                             "Donelan's inverse wave age Ω_c = 11.6 (gF/U10²)^-0.23 = " +
-                                 number(omega_c) + " (fetch " + number(in.fetch) +
-                                 " m, U10 " + number(u) +
-                                 " m/s) is outside its fitted range (0.83, 5) (Gamper eq. 3.67)" +
-                                 extrapolation_hint() + " with Ω_c clamped to the range");
+          throw SettingError(
+              "fetch",
+              "Donelan's inverse wave age Ω_c = 11.6 (gF/U10²)^-0.23 = " + number(omega_c) +
+                  " (fetch " + number(in.fetch) + " m, U10 " + number(u) +
+                  " m/s) is outside its fitted range (0.83, 5) (Gamper eq. 3.67)" +
+                  extrapolation_hint() + " with Ω_c clamped to the range");
         }
-        omega_c = std::fmin(std::fmax(omega_c, kDonelanMinInverseWaveAge),
-                            kDonelanMaxInverseWaveAge);
+        omega_c =
+            std::fmin(std::fmax(omega_c, kDonelanMinInverseWaveAge), kDonelanMaxInverseWaveAge);
       }
       s.inverse_wave_age = omega_c;
       s.peak_frequency = donelan_peak_frequency(omega_c, u, g);
@@ -169,8 +169,7 @@ void validate(const SpectrumSettings& in) {
   if (in.sigma_low) require_positive("sigma_low", *in.sigma_low, 1.0, "");
   if (in.sigma_high) require_positive("sigma_high", *in.sigma_high, 1.0, "");
   const bool frequency_law = in.model == SpectrumModel::pierson_moskowitz ||
-                             in.model == SpectrumModel::jonswap ||
-                             in.model == SpectrumModel::tma;
+                             in.model == SpectrumModel::jonswap || in.model == SpectrumModel::tma;
   const bool jonswap_law = in.model == SpectrumModel::jonswap || in.model == SpectrumModel::tma;
   if ((in.gamma || in.sigma_low || in.sigma_high) && !jonswap_law) {
     throw SettingError(in.gamma ? "gamma" : (in.sigma_low ? "sigma_low" : "sigma_high"),
@@ -194,12 +193,18 @@ bool is_cos_2s_family(SpreadingModel m) {
 
 SpreadingModel default_spreading(SpectrumModel m) {
   switch (m) {
-    case SpectrumModel::phillips: return SpreadingModel::cos2;
-    case SpectrumModel::pierson_moskowitz: return SpreadingModel::hasselmann;
-    case SpectrumModel::jonswap: return SpreadingModel::hasselmann;
-    case SpectrumModel::tma: return SpreadingModel::donelan_banner;
-    case SpectrumModel::donelan: return SpreadingModel::donelan;
-    case SpectrumModel::unified: return SpreadingModel::unified;
+    case SpectrumModel::phillips:
+      return SpreadingModel::cos2;
+    case SpectrumModel::pierson_moskowitz:
+      return SpreadingModel::hasselmann;
+    case SpectrumModel::jonswap:
+      return SpreadingModel::hasselmann;
+    case SpectrumModel::tma:
+      return SpreadingModel::donelan_banner;
+    case SpectrumModel::donelan:
+      return SpreadingModel::donelan;
+    case SpectrumModel::unified:
+      return SpreadingModel::unified;
   }
   return SpreadingModel::hasselmann;
 }
@@ -226,14 +231,16 @@ Spectrum make_spectrum(const SpectrumSettings& in) {
   s.unified.capillary_wavenumber = in.capillary_wavenumber;
   if (!is_cos_2s_family(s.spreading)) {
     if (in.swell != 0.0) {
-      throw SettingError("swell", "applies to the cos-2s spreading family only (mitsuyasu, "
-                                  "hasselmann, mastin, gamper), not " +
-                                      std::string(to_string(s.spreading)));
+      throw SettingError("swell",
+                         "applies to the cos-2s spreading family only (mitsuyasu, "
+                         "hasselmann, mastin, gamper), not " +
+                             std::string(to_string(s.spreading)));
     }
     if (in.spread_blend != 1.0) {
-      throw SettingError("spread_blend", "applies to the cos-2s spreading family only "
-                                         "(mitsuyasu, hasselmann, mastin, gamper), not " +
-                                             std::string(to_string(s.spreading)));
+      throw SettingError("spread_blend",
+                         "applies to the cos-2s spreading family only "
+                         "(mitsuyasu, hasselmann, mastin, gamper), not " +
+                             std::string(to_string(s.spreading)));
     }
   }
 
@@ -282,8 +289,8 @@ double frequency_spectrum(const Spectrum& s, double omega) {
                      s.gravity);
     case SpectrumModel::tma: {
       // S_TMA = S_JONSWAP · Φ(ω, h)  (Vincevičius eq. 1.11).
-      const double j = jonswap(omega, s.alpha, s.peak_frequency, s.gamma, s.sigma_low,
-                               s.sigma_high, s.gravity);
+      const double j =
+          jonswap(omega, s.alpha, s.peak_frequency, s.gamma, s.sigma_low, s.sigma_high, s.gravity);
       if (j == 0.0) return 0.0;
       return j * (s.depth_attenuation == DepthAttenuation::exact
                       ? kitaigorodskii_depth_attenuation(omega, s.tma_depth, s.gravity)
@@ -384,11 +391,14 @@ double wavevector_spectrum(const Spectrum& s, double kx, double kz) {
 double spreading_integral(const Spectrum& s, double omega, double /*k*/) {
   if (!s.printed_spreading) return 1.0;
   switch (s.spreading) {
-    case SpreadingModel::cos2: return cosine_power_integral(2.0);
-    case SpreadingModel::cos4: return cosine_power_integral(4.0);
+    case SpreadingModel::cos2:
+      return cosine_power_integral(2.0);
+    case SpreadingModel::cos4:
+      return cosine_power_integral(4.0);
     case SpreadingModel::donelan:
       return std::tanh(donelan_beta(omega / s.peak_frequency) * kPi);
-    default: return 1.0;
+    default:
+      return 1.0;
   }
 }
 
@@ -435,9 +445,15 @@ std::optional<E> parse(const std::array<std::pair<E, std::string_view>, N>& tabl
 }
 }  // namespace
 
-std::string_view to_string(SpectrumModel m) { return name_of(kModelNames, m); }
-std::string_view to_string(SpreadingModel m) { return name_of(kSpreadingNames, m); }
-std::string_view to_string(DispersionKind d) { return name_of(kDispersionNames, d); }
+std::string_view to_string(SpectrumModel m) {
+  return name_of(kModelNames, m);
+}
+std::string_view to_string(SpreadingModel m) {
+  return name_of(kSpreadingNames, m);
+}
+std::string_view to_string(DispersionKind d) {
+  return name_of(kDispersionNames, d);
+}
 std::optional<SpectrumModel> parse_spectrum_model(std::string_view n) {
   return parse(kModelNames, n);
 }

@@ -18,10 +18,18 @@ namespace oceanref {
 
 enum class SpectrumModel { phillips, pierson_moskowitz, jonswap, tma, donelan, unified };
 enum class SpreadingModel {
-  cos2, cos4, mitsuyasu, hasselmann, mastin, gamper, donelan, donelan_banner, unified
+  cos2,
+  cos4,
+  mitsuyasu,
+  hasselmann,
+  mastin,
+  gamper,
+  donelan,
+  donelan_banner,
+  unified
 };
-enum class PiersonMoskowitzWind { u10, u19_5 };              // which wind the speed means
-enum class DepthAttenuation { exact, thompson_vincent };     // TMA Φ: eq. 1.9 or eq. 1.10
+enum class PiersonMoskowitzWind { u10, u19_5 };           // which wind the speed means
+enum class DepthAttenuation { exact, thompson_vincent };  // TMA Φ: eq. 1.9 or eq. 1.10
 
 // A setting out of its valid range. `key` names the setting (snake_case, as in scene files);
 // the message states the accepted range and the value given.
@@ -38,11 +46,11 @@ class SettingError : public std::invalid_argument {
 // What a user chooses. Unset optionals take the model's own value.
 struct SpectrumSettings {
   SpectrumModel model = SpectrumModel::jonswap;
-  double wind_speed = 10.0;        // U10 [m/s] (U19.5 for pierson-moskowitz with u19_5)
-  double fetch = 1.0e5;            // F [m]
+  double wind_speed = 10.0;  // U10 [m/s] (U19.5 for pierson-moskowitz with u19_5)
+  double fetch = 1.0e5;      // F [m]
   double depth = std::numeric_limits<double>::infinity();  // h [m]
-  double gravity = 9.81;           // g [m/s²]
-  double wind_direction = 0.0;     // φ [rad]: wind vector (cos φ, sin φ) in (x, z)
+  double gravity = 9.81;                                   // g [m/s²]
+  double wind_direction = 0.0;  // φ [rad]: wind vector (cos φ, sin φ) in (x, z)
   std::optional<SpreadingModel> spreading;
   std::optional<DispersionKind> dispersion;
   double swell = 0.0;              // ξ (Lutz eq. 29), cos-2s family only
@@ -55,8 +63,8 @@ struct SpectrumSettings {
   std::optional<double> sigma_high;      // σ for ω > ω_p (JONSWAP/TMA)
   PiersonMoskowitzWind pm_wind = PiersonMoskowitzWind::u10;
   DepthAttenuation depth_attenuation = DepthAttenuation::exact;
-  double phillips_suppression = 1e-3;  // l/L (Gamper §3.4)
-  double capillary_wavenumber = 370.0; // k_m [rad/m]
+  double phillips_suppression = 1e-3;   // l/L (Gamper §3.4)
+  double capillary_wavenumber = 370.0;  // k_m [rad/m]
   bool allow_extrapolation = false;
 };
 
@@ -68,14 +76,14 @@ struct Spectrum {
   double wind_speed;      // U [m/s] as given
   double wind_direction;  // φ [rad]
   double gravity;
-  double peak_frequency;  // ω_p [rad/s]
-  double peak_wavenumber; // k_p [rad/m]
+  double peak_frequency;   // ω_p [rad/s]
+  double peak_wavenumber;  // k_p [rad/m]
   // Frequency-spectrum parameters (PM, JONSWAP, TMA, Donelan).
   double alpha = 0.0;
   double gamma = 1.0;
   double sigma_low = 0.07;
   double sigma_high = 0.09;
-  double inverse_wave_age = 0.0;   // Ω_c (Donelan, Unified); U ω_p/g otherwise
+  double inverse_wave_age = 0.0;  // Ω_c (Donelan, Unified); U ω_p/g otherwise
   PiersonMoskowitzWind pm_wind = PiersonMoskowitzWind::u10;
   // TMA.
   double tma_depth = std::numeric_limits<double>::infinity();

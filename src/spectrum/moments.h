@@ -17,7 +17,7 @@ struct SpectralMoments {
   double mss_x = 0.0;
   double mss_z = 0.0;
   double mss = 0.0;
-  double m0_error = 0.0;   // quadrature error estimates (absolute)
+  double m0_error = 0.0;  // quadrature error estimates (absolute)
   double mss_x_error = 0.0;
   double mss_z_error = 0.0;
 };

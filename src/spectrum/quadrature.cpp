@@ -27,8 +27,8 @@ constexpr std::array<double, 4> kWg = {
     0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
 
 struct Piece {
-  double a, b;        // in the integration variable (x, or t for a mapped tail)
-  bool mapped;        // x = scale / t
+  double a, b;  // in the integration variable (x, or t for a mapped tail)
+  bool mapped;  // x = scale / t
   double scale;
   double value, error;
 };
@@ -69,7 +69,8 @@ QuadratureResult integrate(const std::function<double(double)>& f,
     const double a = breakpoints[i];
     const double b = breakpoints[i + 1];
     if (!(b > a)) continue;
-    Piece p = std::isinf(b) ? Piece{0.0, 1.0, true, a, 0.0, 0.0} : Piece{a, b, false, 1.0, 0.0, 0.0};
+    Piece p =
+        std::isinf(b) ? Piece{0.0, 1.0, true, a, 0.0, 0.0} : Piece{a, b, false, 1.0, 0.0, 0.0};
     if (p.mapped && !(a > 0.0)) throw std::invalid_argument("integrate: tail needs a > 0");
     gauss_kronrod(f, p, result.evaluations);
     pieces.push_back(p);

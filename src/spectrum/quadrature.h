@@ -10,9 +10,9 @@ namespace oceanref {
 
 struct QuadratureResult {
   double value = 0.0;
-  double error = 0.0;       // estimated absolute error (sum of |K15 − G7| over intervals)
+  double error = 0.0;  // estimated absolute error (sum of |K15 − G7| over intervals)
   int evaluations = 0;
-  bool converged = false;   // error ≤ max(absolute, relative·|value|) within the interval budget
+  bool converged = false;  // error ≤ max(absolute, relative·|value|) within the interval budget
 };
 
 struct QuadratureTolerance {

@@ -17,7 +17,9 @@ double sech2(double x) {
 }  // namespace
 
 // θ wrapped to [−π, π] (exact: std::remainder is exact).
-double wrap_angle(double theta) { return std::remainder(theta, 2.0 * kPi); }
+double wrap_angle(double theta) {
+  return std::remainder(theta, 2.0 * kPi);
+}
 
 // Q(s) = 2^{2s−1}/π · Γ²(s+1)/Γ(2s+1), in logarithms (lgamma) so large s cannot overflow
 // (Gamper eq. 3.57; Alimardanov eq. 2.20; Mastin eq. 6 with N_p = 1/Q).

@@ -112,7 +112,9 @@ double unified(double k, double phase_speed, const UnifiedParameters& p) {
 }
 
 // L = U²/g, the largest wave from a continuous wind of speed U (Tessendorf; Gamper §3.4).
-double phillips_largest_wave(double wind_speed, double g) { return wind_speed * wind_speed / g; }
+double phillips_largest_wave(double wind_speed, double g) {
+  return wind_speed * wind_speed / g;
+}
 
 // Ψ(k) = k · A exp[−(kL)⁻² − (kl)²] / k⁴: the radial factor of Gamper eq. 3.73/3.74 times the
 // polar Jacobian k, so that Θ(k) = Ψ(k) D(θ) / k reproduces eq. 3.73 exactly.
