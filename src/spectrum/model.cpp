@@ -388,7 +388,7 @@ double wavevector_spectrum(const Spectrum& s, double kx, double kz) {
   return psi * spreading_at_wavenumber(s, k, std::atan2(kz, kx)) / k;
 }
 
-double spreading_integral(const Spectrum& s, double omega, double /*k*/) {
+double spreading_integral(const Spectrum& s, double omega) {
   if (!s.printed_spreading) return 1.0;
   switch (s.spreading) {
     case SpreadingModel::cos2:

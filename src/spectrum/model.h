@@ -111,7 +111,7 @@ double spreading_at_wavenumber(const Spectrum& s, double k, double theta);
 double wavevector_spectrum(const Spectrum& s, double kx, double kz);
 // ∫_{−π}^{π} D dθ of the chosen spreading in closed form where one exists (1 when
 // normalized; π, 3π/4, tanh(βπ) for the printed cos2, cos4 and donelan forms).
-double spreading_integral(const Spectrum& s, double omega, double k);
+double spreading_integral(const Spectrum& s, double omega);
 // The cos-2s spread s(ω) (with swell) for the cos-2s family; 0 for the others.
 double cos_2s_spread(const Spectrum& s, double omega);
 bool is_cos_2s_family(SpreadingModel m);
