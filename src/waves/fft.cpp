@@ -1,0 +1,50 @@
+#include "waves/fft.h"
+
+#include <kiss_fft.h>
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+
+namespace oceanref {
+
+namespace {
+static_assert(sizeof(kiss_fft_scalar) == sizeof(double), "KissFFT must use double scalars");
+static_assert(sizeof(kiss_fft_cpx) == sizeof(std::complex<double>));
+
+struct KissConfig {
+  explicit KissConfig(int n) : cfg(kiss_fft_alloc(n, 1, nullptr, nullptr)) {
+    if (cfg == nullptr) throw std::bad_alloc();
+  }
+  ~KissConfig() { kiss_fft_free(cfg); }
+  KissConfig(const KissConfig&) = delete;
+  KissConfig& operator=(const KissConfig&) = delete;
+  kiss_fft_cfg cfg;
+};
+
+kiss_fft_cpx* as_kiss(std::complex<double>* p) {
+  return reinterpret_cast<kiss_fft_cpx*>(p);
+}
+}  // namespace
+
+void inverse_fft_2d(std::vector<std::complex<double>>& data, int n, int threads) {
+  const KissConfig config(n);
+  const auto stride = static_cast<std::size_t>(n);
+  parallel_for(n, threads, [&](int row) {
+    std::vector<std::complex<double>> out(stride);
+    kiss_fft(config.cfg, as_kiss(&data[static_cast<std::size_t>(row) * stride]),
+             as_kiss(out.data()));
+    std::copy(out.begin(), out.end(), data.begin() + static_cast<std::ptrdiff_t>(row * n));
+  });
+  parallel_for(n, threads, [&](int column) {
+    std::vector<std::complex<double>> in(stride);
+    std::vector<std::complex<double>> out(stride);
+    for (std::size_t r = 0; r < stride; ++r)
+      in[r] = data[r * stride + static_cast<std::size_t>(column)];
+    kiss_fft(config.cfg, as_kiss(in.data()), as_kiss(out.data()));
+    for (std::size_t r = 0; r < stride; ++r)
+      data[r * stride + static_cast<std::size_t>(column)] = out[r];
+  });
+}
+
+}  // namespace oceanref

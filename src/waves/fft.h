@@ -1,0 +1,38 @@
+// The unnormalized inverse 2-D DFT of Gamper eq. 4.4 with KissFFT in double precision:
+//   out(m, n) = Σ_{a,b} in(a, b) e^{+2πi(am + bn)/N},  arrays row-major [n·N + m].
+// Rows first, then columns; with threads > 1 the rows (columns) are split among threads, and
+// each 1-D transform is the same computation whichever thread runs it, so the result is
+// bit-identical for every thread count.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+namespace oceanref {
+
+void inverse_fft_2d(std::vector<std::complex<double>>& data, int resolution, int threads);
+
+// Runs body(i) for i in [0, count) on up to `threads` threads in contiguous chunks.
+template <class Body>
+void parallel_for(int count, int threads, const Body& body);
+
+}  // namespace oceanref
+
+#include <thread>
+
+template <class Body>
+void oceanref::parallel_for(int count, int threads, const Body& body) {
+  if (threads <= 1 || count <= 1) {
+    for (int i = 0; i < count; ++i) body(i);
+    return;
+  }
+  const int used = threads < count ? threads : count;
+  std::vector<std::jthread> workers;
+  for (int t = 0; t < used; ++t) {
+    const int begin = count * t / used;
+    const int end = count * (t + 1) / used;
+    workers.emplace_back([&body, begin, end] {
+      for (int i = begin; i < end; ++i) body(i);
+    });
+  }
+}

@@ -1,0 +1,86 @@
+// Wave fields of one cascade by spectral synthesis (Gamper §4.2–4.3), and the combination of
+// cascades (Gamper eq. 4.22–4.26).
+//
+// Fields (raw, per cascade, in this order): η (eq. 4.4), ∂η/∂x, ∂η/∂z (eq. 4.13–4.14),
+// D_x, D_z (eq. 4.15–4.18), ∂D_x/∂x, ∂D_z/∂z, ∂D_x/∂z (eq. 4.13 applied to D; ∂D_z/∂x equals
+// ∂D_x/∂z because both have the spectrum k_x k_z h/k). Each is the inverse DFT of h(k, t) times
+// a multiplier; two real fields share one complex transform (eq. 4.8), so the 8 fields cost
+// 4 transforms (5 with multi-resolution, where η and D live on the coarser grid).
+//
+// Choppiness u ≤ 0 (Gamper eq. 4.20): the displaced point is x + u·D. For one wave
+// η = A cos(kx), D_x = Σ −i(k_x/k)h e^{ik·x} = A sin(kx), so near a crest x' = x(1 + uAk):
+// u < 0 draws points towards the crests and sharpens them, u > 0 would flatten the crests and
+// sharpen the troughs (rejected unless explicitly allowed).
+#pragma once
+
+#include <array>
+#include <string_view>
+#include <vector>
+
+#include "waves/realization.h"
+
+namespace oceanref {
+
+enum class Field {
+  height,
+  slope_x,
+  slope_z,
+  displacement_x,
+  displacement_z,
+  ddx_dx,
+  ddz_dz,
+  ddx_dz
+};
+inline constexpr int kFieldCount = 8;
+inline constexpr std::array<std::string_view, kFieldCount> kFieldNames{
+    "height", "slope_x", "slope_z", "disp_x", "disp_z", "ddx_dx", "ddz_dz", "ddx_dz"};
+// η and D are the low-resolution fields of the multi-resolution scheme (Gamper §4.4).
+bool is_low_resolution_field(Field f);
+
+// d(k, 1) = ik, 0 on the Nyquist line of an even N  (Gamper eq. 4.12).
+Complex derivative_factor(int index, double spacing, int resolution);
+// d(l, k) = −i l/k, 0 at k = 0 or on the Nyquist line of l  (Gamper eq. 4.18).
+Complex displacement_factor(int index, double spacing, double k, int resolution);
+// The spectral multiplier of a field for the wavevector (α, β)·Δk.
+Complex field_multiplier(Field f, int alpha, int beta, double spacing, int resolution);
+
+// The 8 raw fields of one cascade on their grids (row-major [n·N + m]).
+struct CascadeFields {
+  double size = 0.0;
+  int low_resolution = 0;   // grid of η, D_x, D_z
+  int high_resolution = 0;  // grid of the slopes and the derivatives of D
+  std::array<std::vector<double>, kFieldCount> values;
+  int transforms = 0;  // complex inverse FFTs used
+};
+
+// Synthesizes the raw fields at time t. `low` and `high` are the same cascade realized at the
+// two resolutions (the same object when multi-resolution is off).
+CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
+                                 double time, int threads);
+
+// Fields combined over cascades at one point (Gamper eq. 4.22–4.26); per cascade the raw fields
+// and its choppiness u_i.
+struct PointFields {
+  std::array<double, kFieldCount> raw{};  // summed raw fields Σ_i (displacements and their
+                                          // derivatives scaled by u_i)
+  double height = 0.0;                    // y = Σ η_i                       (eq. 4.22)
+  double slope_x = 0.0, slope_z = 0.0;    // slopes after displacement       (eq. 4.25)
+  double jacobian = 1.0;                  // det J                           (eq. 4.26)
+  double foam = 0.0;                      // 1 where det J < 0, else 0
+};
+// Accumulates one cascade's raw values into the combination (u·D, u·∂D).
+void add_cascade(PointFields& sum, const std::array<double, kFieldCount>& raw, double choppiness);
+// Completes the combination: slopes (eq. 4.25), Jacobian (eq. 4.26), foam indicator.
+void finish_combination(PointFields& sum);
+
+// s = [∂η/∂x / (1 + u ∂D_x/∂x), ∂η/∂z / (1 + u ∂D_z/∂z)]  (Gamper eq. 4.21/4.25).
+double displaced_slope(double slope, double scaled_displacement_derivative);
+// det J = (1 + u∂D_x/∂x)(1 + u∂D_z/∂z) − (u∂D_x/∂z)(u∂D_z/∂x)  (Gamper eq. 4.26).
+double jacobian_determinant(double u_ddx_dx, double u_ddz_dz, double u_ddx_dz);
+// n = (−s_x, 1, −s_z)/‖·‖  (Gamper §4.3, normal vectors).
+std::array<double, 3> surface_normal(double slope_x, double slope_z);
+// Foam of a sequence (Vincevičius listing 2.4): accumulation = last − decay·Δt/max(current, ½),
+// foam = max(accumulation, current); `current` is the indicator (1 where det J < 0).
+double accumulated_foam(double last, double current, double decay, double time_step);
+
+}  // namespace oceanref
