@@ -82,6 +82,45 @@ expect 2 '--bogus' spectrum --model jonswap --bogus --omega 1
 expect 2 "unknown subcommand 'frobnicate'" frobnicate
 expect 2 'subcommand' # no arguments at all
 
+# --- fields: scene validation, EXR output, point comparison ------------------------------------
+cat >"$tmp/scene.json" <<'JSON'
+{"seed": 5, "time": 2.0,
+ "waves": {"spectrum": {"model": "jonswap", "wind_speed": 12, "fetch": 80000},
+           "cascades": {"sizes": [300, 70]}, "resolution": 32, "low_resolution": 16,
+           "choppiness": -0.9}}
+JSON
+expect 0 '' fields "$tmp/scene.json" -o "$tmp/f1.exr" --threads 1
+[ -s "$tmp/f1.exr" ] || fail "fields -o wrote no EXR"
+for t in 2 3 8; do
+  "$bin" fields "$tmp/scene.json" -o "$tmp/f$t.exr" --threads $t
+  checks=$((checks + 1))
+  cmp -s "$tmp/f1.exr" "$tmp/f$t.exr" || fail "fields EXR differs between 1 and $t threads"
+done
+# At a node of both cascades (x = z = 0) the FFT grid and the direct sum agree to rounding.
+expect 0 '^cascade,field,fft,direct,difference$' fields "$tmp/scene.json" --at 0,0 --time 7
+[ "$(wc -l <"$tmp/out")" -eq 22 ] || fail "fields --at did not print 2x8 + 5 rows"
+awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
+  fail "fields --at 0,0: FFT and direct summation differ by more than 1e-12"
+printf '{"waves": {"resolution": 48}}' >"$tmp/bad.json"
+expect 2 'waves.resolution.*power of two' fields "$tmp/bad.json" --at 0,0
+printf '{"waves": {"choppiness": 0.5}}' >"$tmp/bad.json"
+expect 2 'waves.choppiness.*allow_positive_choppiness' fields "$tmp/bad.json" --at 0,0
+printf '{"waves": {"resolution": 64}, "colour": 1}' >"$tmp/bad.json"
+expect 2 'colour: unknown key' fields "$tmp/bad.json" --at 0,0
+printf '{"waves": ' >"$tmp/bad.json"
+expect 2 'not valid JSON' fields "$tmp/bad.json" --at 0,0
+expect 2 'cannot open' fields "$tmp/missing.json" --at 0,0
+expect 2 '--at.*x,z' fields "$tmp/scene.json" --at 1,2,3
+expect 2 'give -o OUT.exr or --at' fields "$tmp/scene.json"
+expect 2 '--threads' fields "$tmp/scene.json" --at 0,0 --threads -3
+# A failed write leaves neither the file nor a temporary next to it.
+mkdir -p "$tmp/ro" && chmod a-w "$tmp/ro"
+if [ "$(id -u)" -ne 0 ]; then
+  expect 2 'cannot write' fields "$tmp/scene.json" -o "$tmp/ro/f.exr"
+fi
+expect 2 'cannot write' fields "$tmp/scene.json" -o "$tmp/no/such/dir/f.exr"
+[ -z "$(ls -A "$tmp/ro")" ] || fail "a failed EXR write left files behind"
+
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)
 "$bin" "${args[@]}" >"$tmp/a" && "$bin" "${args[@]}" >"$tmp/b"

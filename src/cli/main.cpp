@@ -4,6 +4,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/fields_command.h"
 #include "cli/spectrum_command.h"
 #include "cli/text.h"
 
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
                "oceanref"};
   app.require_subcommand(1);
   const auto run_spectrum = oceanref::cli::add_spectrum_command(app);
+  const auto run_fields = oceanref::cli::add_fields_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
     // Output is assembled in memory and written only when complete: no partial tables.
     std::ostringstream out;
     if (app.got_subcommand("spectrum")) run_spectrum(out);
+    if (app.got_subcommand("fields")) run_fields(out);
     std::cout << out.str() << std::flush;
     return std::cout ? 0 : 2;
   } catch (const oceanref::cli::UsageError& e) {

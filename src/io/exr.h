@@ -1,0 +1,31 @@
+// OpenEXR output of named float channels, written atomically: to a temporary name in the same
+// folder, then renamed, so a failed or interrupted run never leaves a partial file.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace oceanref {
+
+// One channel of a width × height image. A channel may be subsampled by an integer factor
+// (EXR x/y sampling): it then holds (width/sampling) × (height/sampling) values, row-major.
+struct ExrChannel {
+  std::string name;
+  int sampling = 1;
+  std::vector<float> values;
+};
+
+struct ExrImage {
+  int width = 0;
+  int height = 0;
+  std::vector<ExrChannel> channels;
+  std::map<std::string, std::string> attributes;  // string header attributes
+};
+
+// Writes with ZIP compression; throws std::runtime_error naming the file on failure.
+void write_exr(const std::string& path, const ExrImage& image);
+// Reads every channel as float (at its own sampling) and the string attributes.
+ExrImage read_exr(const std::string& path);
+
+}  // namespace oceanref

@@ -1,0 +1,344 @@
+#include "scene/scene.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace oceanref {
+
+namespace {
+using json = nlohmann::json;
+
+std::string join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string shortest(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+// A JSON object whose keys are checked against the accepted set.
+struct Section {
+  const json& value;
+  std::string path;
+
+  Section(const json& v, std::string p, std::initializer_list<const char*> keys)
+      : value(v), path(std::move(p)) {
+    if (!value.is_object())
+      throw SceneError(path.empty() ? "(top level)" : path, "expected an object");
+    const std::set<std::string> accepted(keys.begin(), keys.end());
+    for (const auto& item : value.items()) {
+      if (!accepted.count(item.key())) {
+        std::string list;
+        for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+        throw SceneError(join(path, item.key()), "unknown key (accepted: " + list + ")");
+      }
+    }
+  }
+  bool has(const char* key) const { return value.contains(key); }
+  const json& at(const char* key) const { return value.at(key); }
+  std::string where(const char* key) const { return join(path, key); }
+
+  double number(const char* key, double fallback, double lo, double hi,
+                const char* unit = "") const {
+    if (!has(key)) return fallback;
+    const json& v = at(key);
+    if (!v.is_number()) throw SceneError(where(key), "expected a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) throw SceneError(where(key), "expected a finite number");
+    if (x < lo || x > hi) {
+      throw SceneError(where(key), "must be in [" + shortest(lo) + ", " + shortest(hi) + "]" +
+                                       unit + ", got " + shortest(x));
+    }
+    return x;
+  }
+  std::optional<double> optional_number(const char* key, double lo, double hi) const {
+    if (!has(key)) return std::nullopt;
+    return number(key, 0.0, lo, hi);
+  }
+  int integer(const char* key, int fallback, int lo, int hi) const {
+    if (!has(key)) return fallback;
+    const json& v = at(key);
+    if (!v.is_number_integer()) throw SceneError(where(key), "expected an integer");
+    const auto x = v.get<long long>();
+    if (x < lo || x > hi) {
+      throw SceneError(where(key), "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                                       "], got " + std::to_string(x));
+    }
+    return static_cast<int>(x);
+  }
+  bool boolean(const char* key, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (!at(key).is_boolean()) throw SceneError(where(key), "expected true or false");
+    return at(key).get<bool>();
+  }
+  std::string text(const char* key, const std::string& fallback) const {
+    if (!has(key)) return fallback;
+    if (!at(key).is_string()) throw SceneError(where(key), "expected a string");
+    return at(key).get<std::string>();
+  }
+};
+
+template <class T>
+T choice(const Section& s, const char* key, std::optional<T> (*parse)(std::string_view),
+         const std::string& fallback, const char* accepted) {
+  const std::string name = s.text(key, fallback);
+  const std::optional<T> v = parse(name);
+  if (!v)
+    throw SceneError(s.where(key),
+                     std::string("expected one of ") + accepted + "; got '" + name + "'");
+  return *v;
+}
+
+bool is_power_of_two(int n) {
+  return n > 0 && (n & (n - 1)) == 0;
+}
+
+int resolution(const Section& s, const char* key, int fallback, int hi) {
+  const int n = s.integer(key, fallback, 4, hi);
+  if (!is_power_of_two(n)) {
+    throw SceneError(s.where(key), "must be a power of two in [4, " + std::to_string(hi) +
+                                       "], got " + std::to_string(n));
+  }
+  return n;
+}
+
+// The JSON path of each library setting key.
+std::string spectrum_path(const std::string& key) {
+  static const std::map<std::string, std::string> paths{
+      {"wind_direction", "waves.spectrum.wind_direction_deg"},
+      {"peak_frequency", "waves.spectrum.peak_omega"},
+      {"swell", "waves.spreading.swell"},
+      {"spread_blend", "waves.spreading.spread_blend"}};
+  const auto it = paths.find(key);
+  return it == paths.end() ? "waves.spectrum." + key : it->second;
+}
+
+SpectrumSettings parse_spectrum(const Section& spectrum, const Section* spreading,
+                                const Section& waves) {
+  SpectrumSettings s;
+  s.model = choice<SpectrumModel>(spectrum, "model", parse_spectrum_model, "jonswap",
+                                  "phillips, pierson-moskowitz, jonswap, tma, donelan, unified");
+  // Ranges are checked by make_spectrum (one place); here only types and finiteness.
+  const double big = 1e300;
+  s.wind_speed = spectrum.number("wind_speed", s.wind_speed, -big, big);
+  s.wind_direction = spectrum.number("wind_direction_deg", 0.0, -720.0, 720.0, " degrees") *
+                     std::numbers::pi / 180.0;
+  s.fetch = spectrum.number("fetch", s.fetch, -big, big);
+  if (spectrum.has("depth")) s.depth = spectrum.number("depth", 0.0, -big, big);
+  s.gravity = spectrum.number("gravity", s.gravity, -big, big);
+  s.gamma = spectrum.optional_number("gamma", -big, big);
+  s.alpha = spectrum.optional_number("alpha", -big, big);
+  s.peak_frequency = spectrum.optional_number("peak_omega", -big, big);
+  s.sigma_low = spectrum.optional_number("sigma_low", -big, big);
+  s.sigma_high = spectrum.optional_number("sigma_high", -big, big);
+  const std::string pm = spectrum.text("pm_wind", "u10");
+  if (pm != "u10" && pm != "u19.5") {
+    throw SceneError(spectrum.where("pm_wind"), "expected u10 or u19.5; got '" + pm + "'");
+  }
+  s.pm_wind = pm == "u10" ? PiersonMoskowitzWind::u10 : PiersonMoskowitzWind::u19_5;
+  const std::string tma = spectrum.text("tma_attenuation", "exact");
+  if (tma != "exact" && tma != "thompson-vincent") {
+    throw SceneError(spectrum.where("tma_attenuation"),
+                     "expected exact or thompson-vincent; got '" + tma + "'");
+  }
+  s.depth_attenuation =
+      tma == "exact" ? DepthAttenuation::exact : DepthAttenuation::thompson_vincent;
+  s.phillips_suppression =
+      spectrum.number("phillips_suppression", s.phillips_suppression, -big, big);
+  s.allow_extrapolation = spectrum.boolean("allow_extrapolation", false);
+  if (spreading != nullptr) {
+    if (spreading->has("model")) {
+      s.spreading = choice<SpreadingModel>(
+          *spreading, "model", parse_spreading_model, "",
+          "cos2, cos4, mitsuyasu, hasselmann, mastin, gamper, donelan, donelan-banner, unified");
+    }
+    s.swell = spreading->number("swell", s.swell, -big, big);
+    s.spread_blend = spreading->number("spread_blend", s.spread_blend, -big, big);
+    s.printed_spreading = spreading->boolean("printed", false);
+  }
+  if (waves.has("dispersion")) {
+    s.dispersion = choice<DispersionKind>(waves, "dispersion", parse_dispersion, "",
+                                          "deep, finite-depth, capillary");
+  }
+  return s;
+}
+
+std::vector<double> parse_sizes(const Section& waves) {
+  if (!waves.has("cascades")) return {1000.0};
+  const Section c(waves.at("cascades"), waves.where("cascades"),
+                  {"sizes", "largest", "count", "factor"});
+  if (c.has("sizes")) {
+    if (c.has("largest") || c.has("count") || c.has("factor")) {
+      throw SceneError(c.path, "give either sizes or largest/count/factor, not both");
+    }
+    const json& list = c.at("sizes");
+    if (!list.is_array() || list.empty() || list.size() > 16) {
+      throw SceneError(c.where("sizes"), "expected an array of 1 to 16 sizes in metres");
+    }
+    std::vector<double> sizes;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string p = c.where("sizes") + "[" + std::to_string(i) + "]";
+      if (!list[i].is_number() || !std::isfinite(list[i].get<double>())) {
+        throw SceneError(p, "expected a finite number");
+      }
+      const double v = list[i].get<double>();
+      if (!(v >= 0.01 && v <= 1e6)) {
+        throw SceneError(p, "must be in [0.01, 1e+06] m, got " + shortest(v));
+      }
+      sizes.push_back(v);
+    }
+    return sizes;
+  }
+  const double largest = c.number("largest", 1000.0, 0.01, 1e6, " m");
+  const int count = c.integer("count", 4, 1, 16);
+  const std::string factor = c.text("factor", "golden-large");
+  if (factor != "golden-large" && factor != "golden-small") {
+    throw SceneError(c.where("factor"),
+                     "expected golden-large (f = 1/phi) or golden-small "
+                     "(f = 1 - 1/phi); got '" +
+                         factor + "'");
+  }
+  return golden_ratio_sizes(largest, count,
+                            factor == "golden-large" ? GoldenFactor::large : GoldenFactor::small);
+}
+
+std::vector<double> parse_choppiness(const Section& waves, std::size_t count, bool allow_positive) {
+  const double hi = allow_positive ? 10.0 : 0.0;
+  const auto check = [&](double u, const std::string& p) {
+    if (!std::isfinite(u)) throw SceneError(p, "expected a finite number");
+    if (u < -10.0 || u > hi) {
+      throw SceneError(p,
+                       "must be in [-10, " + shortest(hi) + "], got " + shortest(u) +
+                           (allow_positive ? ""
+                                           : " (u > 0 flattens crests instead of sharpening them, "
+                                             "Gamper eq. 4.20; set waves.allow_positive_choppiness "
+                                             "to use it)"));
+    }
+    return u;
+  };
+  if (!waves.has("choppiness")) return std::vector<double>(count, 0.0);
+  const json& v = waves.at("choppiness");
+  if (v.is_number()) {
+    return std::vector<double>(count, check(v.get<double>(), waves.where("choppiness")));
+  }
+  if (!v.is_array() || v.size() != count) {
+    throw SceneError(waves.where("choppiness"),
+                     "expected a number or an array with one number per cascade (" +
+                         std::to_string(count) + ")");
+  }
+  std::vector<double> u;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string p = waves.where("choppiness") + "[" + std::to_string(i) + "]";
+    if (!v[i].is_number()) throw SceneError(p, "expected a number");
+    u.push_back(check(v[i].get<double>(), p));
+  }
+  return u;
+}
+
+// Bytes the wave grids of a scene need: per cell of each grid the frozen spectrum, ω, h(k, t),
+// the packed transform and the fields (multi-resolution adds the coarse grid).
+double wave_memory(const WaveSettings& w) {
+  const double high = static_cast<double>(w.resolution) * w.resolution;
+  const double low = static_cast<double>(w.low_resolution) * w.low_resolution;
+  const double per_cell = 16 + 8 + 16 + 16 + 8 * 8;
+  return static_cast<double>(w.sizes.size()) * (high + low) * per_cell;
+}
+}  // namespace
+
+Scene parse_scene(const json& document) {
+  const Section top(
+      document, "",
+      {"seed", "time", "waves", "camera", "grid", "atmosphere", "shading", "render", "objects"});
+  for (const char* later : {"camera", "grid", "atmosphere", "shading", "render", "objects"}) {
+    if (top.has(later)) {
+      throw SceneError(later,
+                       "this section is not supported yet by this version of oceanref "
+                       "(supported: seed, time, waves)");
+    }
+  }
+  Scene scene;
+  if (top.has("seed")) {
+    const json& s = top.at("seed");
+    if (!s.is_number_unsigned()) throw SceneError("seed", "expected an integer in [0, 2^64 - 1]");
+    scene.seed = s.get<std::uint64_t>();
+  }
+  scene.time = top.number("time", 0.0, -1e7, 1e7, " s");
+  if (!top.has("waves")) throw SceneError("waves", "missing: the scene needs a waves section");
+  const Section waves(top.at("waves"), "waves",
+                      {"spectrum", "spreading", "dispersion", "cascades", "resolution",
+                       "low_resolution", "choppiness", "allow_positive_choppiness",
+                       "band_partitioning", "minimum_wavelength", "foam"});
+  const json empty = json::object();
+  const Section spectrum(waves.has("spectrum") ? waves.at("spectrum") : empty, "waves.spectrum",
+                         {"model", "wind_speed", "wind_direction_deg", "fetch", "depth", "gravity",
+                          "gamma", "alpha", "peak_omega", "sigma_low", "sigma_high", "pm_wind",
+                          "tma_attenuation", "phillips_suppression", "allow_extrapolation"});
+  std::optional<Section> spreading;
+  if (waves.has("spreading")) {
+    spreading.emplace(
+        waves.at("spreading"), "waves.spreading",
+        std::initializer_list<const char*>{"model", "swell", "spread_blend", "printed"});
+  }
+  WaveSettings& w = scene.waves;
+  w.seed = scene.seed;
+  w.spectrum = parse_spectrum(spectrum, spreading ? &*spreading : nullptr, waves);
+  w.sizes = parse_sizes(waves);
+  w.resolution = resolution(waves, "resolution", 256, 8192);
+  w.low_resolution = resolution(waves, "low_resolution", w.resolution, w.resolution);
+  w.choppiness =
+      parse_choppiness(waves, w.sizes.size(), waves.boolean("allow_positive_choppiness", false));
+  w.band_partitioning = waves.boolean("band_partitioning", true);
+  if (w.band_partitioning) {
+    for (std::size_t i = 1; i < w.sizes.size(); ++i) {
+      if (!(w.sizes[i] < w.sizes[i - 1])) {
+        throw SceneError("waves.cascades",
+                         "band partitioning needs strictly decreasing sizes, "
+                         "largest first");
+      }
+    }
+  }
+  w.minimum_wavelength = waves.number(
+      "minimum_wavelength", default_minimum_wavelength(w.spectrum.model), 0.0, 100.0, " m");
+  if (waves.has("foam")) {
+    const Section foam(waves.at("foam"), "waves.foam", {"decay", "time_step", "steps"});
+    scene.foam.decay = foam.number("decay", scene.foam.decay, 0.0, 1e3, " per second");
+    scene.foam.time_step = foam.number("time_step", scene.foam.time_step, 1e-4, 10.0, " s");
+    scene.foam.steps = foam.integer("steps", 0, 0, 10000);
+  }
+  const double bytes = wave_memory(w);
+  if (bytes > kWaveMemoryCap) {
+    throw SceneError("waves.resolution",
+                     "the wave grids would need " + shortest(std::round(bytes / 1048576.0)) +
+                         " MiB, over the cap of 8192 MiB; lower the resolution or the number of "
+                         "cascades");
+  }
+  try {
+    (void)make_spectrum(w.spectrum);
+  } catch (const SettingError& e) {
+    throw SceneError(spectrum_path(e.key()), e.what());
+  }
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, "cannot open the scene file");
+  json document;
+  try {
+    document = json::parse(in, nullptr, true, false);
+  } catch (const json::exception& e) {  // syntax errors and numbers out of range
+    throw SceneError(path, std::string("not valid JSON: ") + e.what());
+  }
+  return parse_scene(document);
+}
+
+}  // namespace oceanref

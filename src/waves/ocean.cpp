@@ -1,0 +1,155 @@
+#include "waves/ocean.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "waves/direct_sum.h"
+#include "waves/fft.h"
+
+namespace oceanref {
+
+double default_minimum_wavelength(SpectrumModel model) {
+  return model == SpectrumModel::unified ? 0.0 : kMinimumWavelength;
+}
+
+Ocean realize_ocean(const WaveSettings& settings, int threads) {
+  Ocean ocean{make_spectrum(settings.spectrum), {}};
+  const double k_max = settings.minimum_wavelength > 0.0
+                           ? 2.0 * std::numbers::pi / settings.minimum_wavelength
+                           : std::numeric_limits<double>::infinity();
+  const std::vector<Band> high_bands =
+      cascade_bands(settings.sizes, settings.resolution, settings.band_partitioning, k_max);
+  const std::vector<Band> low_bands =
+      cascade_bands(settings.sizes, settings.low_resolution, settings.band_partitioning, k_max);
+  const int count = static_cast<int>(settings.sizes.size());
+  ocean.cascades.resize(settings.sizes.size());
+  parallel_for(count, threads, [&](int i) {
+    const auto c = static_cast<std::size_t>(i);
+    const auto index = static_cast<std::uint32_t>(i);
+    CascadeSpectra& out = ocean.cascades[c];
+    out.high = realize_pattern(ocean.spectrum, settings.seed,
+                               {index, settings.sizes[c], settings.resolution, high_bands[c]});
+    out.low =
+        settings.low_resolution == settings.resolution
+            ? out.high
+            : realize_pattern(ocean.spectrum, settings.seed,
+                              {index, settings.sizes[c], settings.low_resolution, low_bands[c]});
+    out.choppiness = settings.choppiness[c];
+  });
+  return ocean;
+}
+
+std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads) {
+  std::vector<CascadeFields> fields;
+  for (const CascadeSpectra& c : ocean.cascades) {
+    fields.push_back(synthesize_cascade(c.low, c.high, time, threads));
+  }
+  return fields;
+}
+
+double sample_periodic(const std::vector<double>& grid, int n, double size, double x, double z) {
+  const double spacing = size / n;
+  // Position in cells, in [0, N); a point within 1e−9 cell of a node is that node.
+  const auto wrap = [&](double p) {
+    double u = std::fmod(p, size) / spacing;
+    if (u < 0.0) u += n;
+    const double node = std::nearbyint(u);
+    if (std::fabs(u - node) < 1e-9) u = node;
+    return u >= n ? u - n : u;
+  };
+  const double u = wrap(x);
+  const double v = wrap(z);
+  const double u0 = std::floor(u);
+  const double v0 = std::floor(v);
+  const double fu = u - u0;
+  const double fv = v - v0;
+  const int m0 = static_cast<int>(u0) % n;
+  const int n0 = static_cast<int>(v0) % n;
+  const int m1 = (m0 + 1) % n;
+  const int n1 = (n0 + 1) % n;
+  const auto at = [&](int m, int k) { return grid[grid_offset(m, k, n)]; };
+  if (fu == 0.0 && fv == 0.0) return at(m0, n0);  // exactly the node value
+  return (1.0 - fv) * ((1.0 - fu) * at(m0, n0) + fu * at(m1, n0)) +
+         fv * ((1.0 - fu) * at(m0, n1) + fu * at(m1, n1));
+}
+
+std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z) {
+  std::array<double, kFieldCount> raw{};
+  for (int q = 0; q < kFieldCount; ++q) {
+    const int n = is_low_resolution_field(Field(q)) ? f.low_resolution : f.high_resolution;
+    raw[static_cast<std::size_t>(q)] =
+        sample_periodic(f.values[static_cast<std::size_t>(q)], n, f.size, x, z);
+  }
+  return raw;
+}
+
+PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                               double x, double z) {
+  PointFields sum;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    add_cascade(sum, cascade_from_grids(fields[i], x, z), ocean.cascades[i].choppiness);
+  }
+  finish_combination(sum);
+  return sum;
+}
+
+PointFields combine_direct(const Ocean& ocean, double x, double z, double time) {
+  PointFields sum;
+  for (const CascadeSpectra& c : ocean.cascades) {
+    add_cascade(sum, direct_sum(c.low, c.high, x, z, time), c.choppiness);
+  }
+  finish_combination(sum);
+  return sum;
+}
+
+std::vector<double> cascade_jacobian(const CascadeFields& f, double u) {
+  const auto& dxx = f.values[static_cast<std::size_t>(Field::ddx_dx)];
+  const auto& dzz = f.values[static_cast<std::size_t>(Field::ddz_dz)];
+  const auto& dxz = f.values[static_cast<std::size_t>(Field::ddx_dz)];
+  std::vector<double> j(dxx.size());
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    j[i] = jacobian_determinant(u * dxx[i], u * dzz[i], u * dxz[i]);
+  }
+  return j;
+}
+
+std::vector<PointFields> combine_on_footprint(const Ocean& ocean,
+                                              const std::vector<CascadeFields>& fields,
+                                              int threads) {
+  const int n = fields[0].high_resolution;
+  const double spacing = fields[0].size / n;
+  std::vector<PointFields> out(grid_cells(n));
+  parallel_for(n, threads, [&](int row) {
+    for (int m = 0; m < n; ++m) {
+      out[grid_offset(m, row, n)] = combine_from_grids(ocean, fields, m * spacing, row * spacing);
+    }
+  });
+  return out;
+}
+
+AccumulatedFoam accumulate_foam(const Ocean& ocean, double time, const FoamSequence& sequence,
+                                int threads) {
+  AccumulatedFoam foam;
+  foam.cascades.resize(ocean.cascades.size());
+  for (int s = sequence.steps; s >= 0; --s) {
+    const double t = time - s * sequence.time_step;
+    const std::vector<CascadeFields> frame = synthesize_ocean(ocean, t, threads);
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      const std::vector<double> j = cascade_jacobian(frame[i], ocean.cascades[i].choppiness);
+      std::vector<double>& f = foam.cascades[i];
+      if (f.empty()) f.assign(j.size(), 0.0);
+      for (std::size_t c = 0; c < j.size(); ++c) {
+        f[c] = accumulated_foam(f[c], j[c] < 0.0 ? 1.0 : 0.0, sequence.decay, sequence.time_step);
+      }
+    }
+    const std::vector<PointFields> sum = combine_on_footprint(ocean, frame, threads);
+    if (foam.combined.empty()) foam.combined.assign(sum.size(), 0.0);
+    for (std::size_t c = 0; c < sum.size(); ++c) {
+      foam.combined[c] =
+          accumulated_foam(foam.combined[c], sum[c].foam, sequence.decay, sequence.time_step);
+    }
+  }
+  return foam;
+}
+
+}  // namespace oceanref

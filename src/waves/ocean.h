@@ -1,0 +1,85 @@
+// The whole wave model of a scene: the spectrum, its cascades with their bands and frozen
+// random spectra, and the synthesis of every cascade's fields at a time (Gamper §4.4).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "spectrum/model.h"
+#include "waves/cascades.h"
+#include "waves/fields.h"
+#include "waves/realization.h"
+
+namespace oceanref {
+
+struct WaveSettings {
+  std::uint64_t seed = 1;
+  SpectrumSettings spectrum;
+  std::vector<double> sizes{1000.0};    // L_i [m], decreasing when band-partitioned
+  int resolution = 256;                 // N_h: slopes and derivatives of D
+  int low_resolution = 256;             // N_l ≤ N_h: η and D (multi-resolution when smaller)
+  std::vector<double> choppiness{0.0};  // u_i ≤ 0 per cascade (eq. 4.20, 4.24)
+  bool band_partitioning = true;
+  // The shortest wave [m]: λ_min = 1.73 cm for spectra without capillary physics (Gamper §4.4),
+  // 0 (no floor) for the Unified spectrum.
+  double minimum_wavelength = kMinimumWavelength;
+};
+
+struct CascadeSpectra {
+  PatternSpectrum low;   // on N_l
+  PatternSpectrum high;  // on N_h (a copy of low when N_l = N_h)
+  double choppiness = 0.0;
+};
+
+struct Ocean {
+  Spectrum spectrum;
+  std::vector<CascadeSpectra> cascades;
+};
+
+// λ_min for a spectrum: 0 for Unified (it models capillary waves), 1.73 cm otherwise.
+double default_minimum_wavelength(SpectrumModel model);
+
+// Resolves the spectrum and realizes every cascade at both resolutions (cascade i keys its draws
+// with index i). Throws SettingError for invalid spectrum settings.
+Ocean realize_ocean(const WaveSettings& settings, int threads);
+
+// Raw fields of every cascade at time t.
+std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads);
+
+// A periodic grid sampled at a world point: exact at nodes, bilinear in between.
+double sample_periodic(const std::vector<double>& grid, int resolution, double size, double x,
+                       double z);
+
+// The combined fields at (x, z) from the FFT grids (bilinear between nodes) and by direct
+// summation over every component of every cascade.
+PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                               double x, double z);
+PointFields combine_direct(const Ocean& ocean, double x, double z, double time);
+// The raw fields of one cascade at (x, z) from its FFT grids.
+std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z);
+
+// One cascade's Jacobian determinant (eq. 4.26 with its own u) on its high-resolution grid.
+std::vector<double> cascade_jacobian(const CascadeFields& f, double choppiness);
+
+// The combined fields on cascade 0's footprint (L_0 × L_0 at N_h samples): cascade 0 at its
+// nodes, the other cascades sampled bilinearly from their periodic grids (the renderer's lookup).
+std::vector<PointFields> combine_on_footprint(const Ocean& ocean,
+                                              const std::vector<CascadeFields>& fields,
+                                              int threads);
+
+// Foam accumulated over a sequence (Vincevičius listing 2.4): the negative-Jacobian indicator
+// of the frames t − steps·Δt, …, t folded with accumulated_foam, starting from no foam.
+struct FoamSequence {
+  double decay = 1.0;             // per second
+  double time_step = 1.0 / 30.0;  // Δt [s]
+  int steps = 0;                  // earlier frames; 0: the instantaneous indicator
+};
+struct AccumulatedFoam {
+  std::vector<std::vector<double>> cascades;  // per cascade, on its high-resolution grid
+  std::vector<double> combined;               // on cascade 0's footprint
+};
+AccumulatedFoam accumulate_foam(const Ocean& ocean, double time, const FoamSequence& sequence,
+                                int threads);
+
+}  // namespace oceanref

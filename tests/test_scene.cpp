@@ -1,0 +1,158 @@
+// Scene files: strict validation with JSON paths; EXR round trip; the whole ocean's FFT grids
+// against direct summation.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "io/exr.h"
+#include "scene/scene.h"
+
+using namespace oceanref;
+using nlohmann::json;
+
+namespace {
+json minimal() {
+  return json::parse(R"({"seed": 3, "time": 1.5, "waves": {"resolution": 16,
+      "cascades": {"sizes": [200, 60]}, "choppiness": -0.8}})");
+}
+
+std::string error_path(const json& scene) {
+  try {
+    parse_scene(scene);
+  } catch (const SceneError& e) {
+    return e.path();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("scene: defaults and values are read") {
+  const Scene s = parse_scene(minimal());
+  CHECK(s.seed == 3);
+  CHECK(s.time == 1.5);
+  CHECK(s.waves.sizes == std::vector<double>{200.0, 60.0});
+  CHECK(s.waves.resolution == 16);
+  CHECK(s.waves.low_resolution == 16);
+  CHECK(s.waves.choppiness == std::vector<double>{-0.8, -0.8});
+  CHECK(s.waves.minimum_wavelength == kMinimumWavelength);
+  json golden = minimal();
+  golden["waves"]["cascades"] =
+      json::parse(R"({"largest": 100, "count": 3, "factor": "golden-large"})");
+  golden["waves"]["choppiness"] = json::array({-1, -0.5, 0});
+  const Scene g = parse_scene(golden);
+  CHECK(g.waves.sizes.size() == 3);
+  CHECK(g.waves.sizes[1] == doctest::Approx(61.803398874989485));
+}
+
+TEST_CASE("scene: every bad value is rejected with its JSON path") {
+  json s = minimal();
+  s["colour"] = 1;
+  CHECK(error_path(s) == "colour");
+  s = minimal();
+  s["waves"]["resolution"] = 48;  // not a power of two
+  CHECK(error_path(s) == "waves.resolution");
+  s = minimal();
+  s["waves"]["resolution"] = 16.5;
+  CHECK(error_path(s) == "waves.resolution");
+  s = minimal();
+  s["waves"]["low_resolution"] = 32;  // above resolution
+  CHECK(error_path(s) == "waves.low_resolution");
+  s = minimal();
+  s["waves"]["choppiness"] = 0.5;  // u > 0
+  CHECK(error_path(s) == "waves.choppiness");
+  s["waves"]["allow_positive_choppiness"] = true;
+  CHECK(error_path(s).empty());
+  s = minimal();
+  s["waves"]["choppiness"] = json::array({-1});  // one per cascade
+  CHECK(error_path(s) == "waves.choppiness");
+  s = minimal();
+  s["waves"]["cascades"]["sizes"] = json::array({60, 200});  // increasing with partitioning
+  CHECK(error_path(s) == "waves.cascades");
+  s = minimal();
+  s["waves"]["cascades"]["sizes"][1] = "big";
+  CHECK(error_path(s) == "waves.cascades.sizes[1]");
+  s = minimal();
+  s["waves"]["spectrum"]["wind_speed"] = 75;
+  CHECK(error_path(s) == "waves.spectrum.wind_speed");
+  // A number too large for a double is a parse error of the file, named by its path.
+  const std::string file = (std::filesystem::temp_directory_path() / "oceanref_huge.json").string();
+  {
+    std::ofstream out(file);
+    out << R"({"waves": {"spectrum": {"wind_speed": 1e999}}})";
+  }
+  CHECK_THROWS_WITH_AS(load_scene(file), doctest::Contains("not valid JSON"), SceneError);
+  std::filesystem::remove(file);
+  s = minimal();
+  s["waves"]["spreading"] = json::parse(R"({"model": "cos3"})");
+  CHECK(error_path(s) == "waves.spreading.model");
+  s = minimal();
+  s["waves"]["spreading"] = json::parse(R"({"model": "donelan", "swell": 0.5})");
+  CHECK(error_path(s) == "waves.spreading.swell");
+  s = minimal();
+  s["waves"]["resolution"] = 8192;
+  s["waves"]["cascades"]["sizes"] = json::array({900, 500, 300, 200, 100, 50, 20, 10});
+  CHECK(error_path(s) == "waves.resolution");  // memory cap
+  s = minimal();
+  s["camera"] = json::object();
+  CHECK(error_path(s) == "camera");
+  s = minimal();
+  s["seed"] = -1;
+  CHECK(error_path(s) == "seed");
+  s = minimal();
+  s.erase("waves");
+  CHECK(error_path(s) == "waves");
+  CHECK_THROWS_AS(load_scene("/nonexistent/scene.json"), SceneError);
+}
+
+TEST_CASE("EXR: float channels with subsampling round-trip exactly; no file left on failure") {
+  ExrImage image;
+  image.width = 8;
+  image.height = 8;
+  std::vector<float> full(64);
+  std::vector<float> coarse(16);
+  for (std::size_t i = 0; i < full.size(); ++i) full[i] = 0.25f * static_cast<float>(i) - 3.0f;
+  for (std::size_t i = 0; i < coarse.size(); ++i) coarse[i] = -static_cast<float>(i);
+  image.channels = {{"c0.slope_x", 1, full}, {"c0.height", 2, coarse}};
+  image.attributes["oceanref.seed"] = "7";
+  const std::string path = (std::filesystem::temp_directory_path() / "oceanref_test.exr").string();
+  write_exr(path, image);
+  const ExrImage back = read_exr(path);
+  CHECK(back.width == 8);
+  CHECK(back.attributes.at("oceanref.seed") == "7");
+  REQUIRE(back.channels.size() == 2);
+  for (const ExrChannel& c : back.channels) {
+    CHECK(c.values == (c.name == "c0.height" ? coarse : full));
+  }
+  std::filesystem::remove(path);
+  CHECK_THROWS(write_exr("/nonexistent/dir/out.exr", image));
+  CHECK_THROWS(read_exr("/nonexistent/in.exr"));
+}
+
+TEST_CASE("ocean: combined FFT fields equal direct summation at common grid nodes") {
+  // Sizes 120 and 40 m share the nodes of a 40/16 = 2.5 m lattice... every node of cascade 1
+  // that is also a node of cascade 0 (spacing 7.5 m vs 2.5 m: every third node).
+  json s = minimal();
+  s["waves"]["cascades"]["sizes"] = json::array({120, 40});
+  s["waves"]["low_resolution"] = 8;
+  const Scene scene = parse_scene(s);
+  const Ocean ocean = realize_ocean(scene.waves, 2);
+  const auto fields = synthesize_ocean(ocean, scene.time, 2);
+  for (int m = 0; m < 16; m += 2) {
+    for (int n = 0; n < 16; n += 2) {
+      const double x = m * 7.5;
+      const double z = n * 7.5;
+      const PointFields g = combine_from_grids(ocean, fields, x, z);
+      const PointFields d = combine_direct(ocean, x, z, scene.time);
+      // Field magnitudes are O(1); both paths agree to rounding (see test_waves for the bound).
+      CHECK(std::fabs(g.height - d.height) < 1e-12);
+      CHECK(std::fabs(g.slope_x - d.slope_x) < 1e-12);
+      CHECK(std::fabs(g.slope_z - d.slope_z) < 1e-12);
+      CHECK(std::fabs(g.jacobian - d.jacobian) < 1e-12);
+    }
+  }
+}
