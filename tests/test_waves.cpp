@@ -30,15 +30,7 @@ Pattern pattern(double size, int n, Band band = {}) {
 
 // A pattern holding one wave of amplitude A at (α, β): η = A cos(k·x − ωt).
 PatternSpectrum single_wave(const Spectrum& s, double size, int n, int alpha, int beta, double a) {
-  PatternSpectrum p{pattern(size, n), std::vector<Complex>(grid_cells(n)),
-                    std::vector<double>(grid_cells(n))};
-  const double dk = wavenumber_spacing(size);
-  for (int b = 0; b < n; ++b) {
-    for (int c = 0; c < n; ++c) {
-      p.omega[grid_offset(c, b, n)] =
-          angular_frequency(s.dispersion, std::hypot(wave_index(c, n) * dk, wave_index(b, n) * dk));
-    }
-  }
+  PatternSpectrum p = pattern_grid(s, pattern(size, n));
   p.h0[grid_offset(array_index(alpha, n), array_index(beta, n), n)] = a;
   return p;
 }
@@ -160,7 +152,9 @@ TEST_CASE("Hermitian packing: single transforms are real, the packed pair equals
     for (int b = 0; b < n; ++b) {
       for (int a = 0; a < n; ++a) {
         const std::size_t i = grid_offset(a, b, n);
-        c[i] = field_multiplier(Field(q), wave_index(a, n), wave_index(b, n), dk, n) * h[i];
+        c[i] = field_multiplier(Field(q), wave_index(a, n), wave_index(b, n), dk,
+                                p.inverse_wavenumber[i], n) *
+               h[i];
         scale += std::abs(c[i]);
       }
     }
@@ -201,7 +195,8 @@ TEST_CASE("FFT grid equals direct summation at every grid node for every field")
       for (int b = 0; b < n; ++b) {
         for (int a = 0; a < n; ++a) {
           scale += std::abs(field_multiplier(field, wave_index(a, n), wave_index(b, n),
-                                             wavenumber_spacing(size), n) *
+                                             wavenumber_spacing(size),
+                                             src.inverse_wavenumber[grid_offset(a, b, n)], n) *
                             h[grid_offset(a, b, n)]);
         }
       }

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/bench_command.h"
 #include "cli/fields_command.h"
 #include "cli/spectrum_command.h"
 #include "cli/text.h"
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const auto run_spectrum = oceanref::cli::add_spectrum_command(app);
   const auto run_fields = oceanref::cli::add_fields_command(app);
+  const auto run_bench = oceanref::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -34,6 +36,7 @@ int main(int argc, char** argv) {
     std::ostringstream out;
     if (app.got_subcommand("spectrum")) run_spectrum(out);
     if (app.got_subcommand("fields")) run_fields(out);
+    if (app.got_subcommand("bench")) run_bench(out);
     std::cout << out.str() << std::flush;
     return std::cout ? 0 : 2;
   } catch (const oceanref::cli::UsageError& e) {

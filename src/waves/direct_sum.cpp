@@ -40,9 +40,9 @@ void add_pattern(const PatternSpectrum& s, double x, double z, double time, bool
       if (amplitude == 0.0) continue;
       const int alpha = wave_index(a, n);
       const AxisBasis bx = axis_basis(alpha, x, p.size, n);
-      const double k = std::hypot(alpha * dk, beta * dk);
-      const Complex gx = displacement_factor(alpha, dk, k, n);
-      const Complex gz = displacement_factor(beta, dk, k, n);
+      const double inverse_k = s.inverse_wavenumber[grid_offset(a, b, n)];
+      const Complex gx = displacement_factor(alpha, dk, inverse_k, n);
+      const Complex gz = displacement_factor(beta, dk, inverse_k, n);
       const Complex e = bx.value * bz.value;
       auto add = [&](Field f, Complex term) {
         sum[static_cast<std::size_t>(f)] += amplitude * term;

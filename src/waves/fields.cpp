@@ -1,5 +1,6 @@
 #include "waves/fields.h"
 
+#include <chrono>
 #include <cmath>
 
 #include "waves/fft.h"
@@ -10,99 +11,101 @@ bool is_low_resolution_field(Field f) {
   return f == Field::height || f == Field::displacement_x || f == Field::displacement_z;
 }
 
-Complex derivative_factor(int index, double spacing, int resolution) {
-  if (is_nyquist(index, resolution)) return 0.0;
-  return {0.0, index * spacing};
-}
-
-Complex displacement_factor(int index, double spacing, double k, int resolution) {
-  if (!(k > 0.0) || is_nyquist(index, resolution)) return 0.0;
-  return {0.0, -index * spacing / k};
-}
-
-Complex field_multiplier(Field f, int alpha, int beta, double spacing, int n) {
-  const double k = std::hypot(alpha * spacing, beta * spacing);
-  switch (f) {
-    case Field::height:
-      return 1.0;
-    case Field::slope_x:
-      return derivative_factor(alpha, spacing, n);
-    case Field::slope_z:
-      return derivative_factor(beta, spacing, n);
-    case Field::displacement_x:
-      return displacement_factor(alpha, spacing, k, n);
-    case Field::displacement_z:
-      return displacement_factor(beta, spacing, k, n);
-    case Field::ddx_dx:
-      return derivative_factor(alpha, spacing, n) * displacement_factor(alpha, spacing, k, n);
-    case Field::ddz_dz:
-      return derivative_factor(beta, spacing, n) * displacement_factor(beta, spacing, k, n);
-    case Field::ddx_dz:
-      return derivative_factor(beta, spacing, n) * displacement_factor(alpha, spacing, k, n);
-  }
-  return 0.0;
-}
-
 namespace {
+// a·b written out: the library's complex product checks for NaN and infinity (C Annex G) at a
+// high cost, and the values here are always finite.
+Complex multiply(Complex a, Complex b) {
+  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 // Inverse transforms of M_f·h for the given fields, two per complex transform (eq. 4.8):
 // c = F⁻¹(M₁h + i·M₂h), field₁ = Re c, field₂ = Im c.
-int synthesize_fields(const std::vector<Complex>& h, const Pattern& p,
-                      const std::vector<Field>& fields, CascadeFields& out, int threads) {
-  const int n = p.resolution;
-  const double dk = wavenumber_spacing(p.size);
+int synthesize_fields(const std::vector<Complex>& h, const PatternSpectrum& s,
+                      const std::vector<Field>& fields, CascadeFields& out, int threads,
+                      InverseFft2d fft, SynthesisTimes* times, std::vector<Complex>& c) {
+  const int n = s.pattern.resolution;
+  const double dk = wavenumber_spacing(s.pattern.size);
   int transforms = 0;
+  c.resize(h.size());
   for (std::size_t f = 0; f < fields.size(); f += 2) {
     const bool paired = f + 1 < fields.size();
-    std::vector<Complex> c(h.size());
-    for (int b = 0; b < n; ++b) {
+    auto start = std::chrono::steady_clock::now();
+    parallel_for(n, threads, [&](int b) {
+      const int beta = wave_index(b, n);
       for (int a = 0; a < n; ++a) {
         const std::size_t i = grid_offset(a, b, n);
         const int alpha = wave_index(a, n);
-        const int beta = wave_index(b, n);
-        c[i] = field_multiplier(fields[f], alpha, beta, dk, n) * h[i];
+        const double k = s.inverse_wavenumber[i];
+        c[i] = multiply(field_multiplier(fields[f], alpha, beta, dk, k, n), h[i]);
         if (paired) {
-          c[i] += Complex(0.0, 1.0) * (field_multiplier(fields[f + 1], alpha, beta, dk, n) * h[i]);
+          const Complex second =
+              multiply(field_multiplier(fields[f + 1], alpha, beta, dk, k, n), h[i]);
+          c[i] += Complex(-second.imag(), second.real());  // + i·second
         }
       }
-    }
-    inverse_fft_2d(c, n, threads);
+    });
+    if (times != nullptr) times->pack += seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    fft(c, n, threads);
+    if (times != nullptr) times->transform += seconds_since(start);
     ++transforms;
+    start = std::chrono::steady_clock::now();
     auto& first = out.values[static_cast<std::size_t>(fields[f])];
+    auto& second = out.values[static_cast<std::size_t>(paired ? fields[f + 1] : fields[f])];
     first.resize(c.size());
-    for (std::size_t i = 0; i < c.size(); ++i) first[i] = c[i].real();
-    if (paired) {
-      auto& second = out.values[static_cast<std::size_t>(fields[f + 1])];
-      second.resize(c.size());
-      for (std::size_t i = 0; i < c.size(); ++i) second[i] = c[i].imag();
-    }
+    second.resize(c.size());
+    parallel_for(n, threads, [&](int row) {
+      for (std::size_t i = grid_offset(0, row, n); i < grid_offset(0, row + 1, n); ++i) {
+        first[i] = c[i].real();
+        if (paired) second[i] = c[i].imag();
+      }
+    });
+    if (times != nullptr) times->unpack += seconds_since(start);
   }
   return transforms;
 }
 }  // namespace
 
-CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
-                                 double time, int threads) {
-  CascadeFields out;
+void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time,
+                        int threads, CascadeFields& out, SynthesisWorkspace& work, InverseFft2d fft,
+                        SynthesisTimes* times) {
   out.size = high.pattern.size;
   out.low_resolution = low.pattern.resolution;
   out.high_resolution = high.pattern.resolution;
-  const std::vector<Complex> h_high = spectrum_at_time(high, time);
+  const auto evolve = [&](const PatternSpectrum& s, std::vector<Complex>& h) {
+    const auto start = std::chrono::steady_clock::now();
+    evolve_spectrum(s, time, threads, h);
+    if (times != nullptr) times->evolve += seconds_since(start);
+  };
+  evolve(high, work.h_high);
   if (low.pattern.resolution == high.pattern.resolution) {
     out.transforms = synthesize_fields(
-        h_high, high.pattern,
+        work.h_high, high,
         {Field::height, Field::ddx_dz, Field::slope_x, Field::slope_z, Field::displacement_x,
          Field::displacement_z, Field::ddx_dx, Field::ddz_dz},
-        out, threads);
-    return out;
+        out, threads, fft, times, work.packed);
+    return;
   }
-  const std::vector<Complex> h_low = spectrum_at_time(low, time);
-  out.transforms = synthesize_fields(h_low, low.pattern,
+  evolve(low, work.h_low);
+  out.transforms = synthesize_fields(work.h_low, low,
                                      {Field::height, Field::displacement_x, Field::displacement_z},
-                                     out, threads) +
-                   synthesize_fields(h_high, high.pattern,
+                                     out, threads, fft, times, work.packed) +
+                   synthesize_fields(work.h_high, high,
                                      {Field::slope_x, Field::slope_z, Field::ddx_dx, Field::ddz_dz,
                                       Field::ddx_dz},
-                                     out, threads);
+                                     out, threads, fft, times, work.packed);
+}
+
+CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
+                                 double time, int threads, InverseFft2d fft,
+                                 SynthesisTimes* times) {
+  CascadeFields out;
+  SynthesisWorkspace work;
+  synthesize_cascade(low, high, time, threads, out, work, fft, times);
   return out;
 }
 

@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "waves/fft.h"
 #include "waves/realization.h"
 
 namespace oceanref {
@@ -38,11 +39,44 @@ inline constexpr std::array<std::string_view, kFieldCount> kFieldNames{
 bool is_low_resolution_field(Field f);
 
 // d(k, 1) = ik, 0 on the Nyquist line of an even N  (Gamper eq. 4.12).
-Complex derivative_factor(int index, double spacing, int resolution);
-// d(l, k) = −i l/k, 0 at k = 0 or on the Nyquist line of l  (Gamper eq. 4.18).
-Complex displacement_factor(int index, double spacing, double k, int resolution);
-// The spectral multiplier of a field for the wavevector (α, β)·Δk.
-Complex field_multiplier(Field f, int alpha, int beta, double spacing, int resolution);
+[[gnu::always_inline]] inline Complex derivative_factor(int index, double spacing, int resolution) {
+  if (is_nyquist(index, resolution)) return 0.0;
+  return {0.0, index * spacing};
+}
+// d(l, k) = −i l/k, 0 at k = 0 or on the Nyquist line of l  (Gamper eq. 4.18); 1/k is given
+// (0 at k = 0), so the per-frame synthesis divides nothing.
+[[gnu::always_inline]] inline Complex displacement_factor(int index, double spacing,
+                                                          double inverse_k, int resolution) {
+  if (is_nyquist(index, resolution)) return 0.0;
+  return {0.0, -(index * spacing) * inverse_k};
+}
+// The spectral multiplier of a field for the wavevector (α, β)·Δk with 1/|k| given.
+[[gnu::always_inline]] inline Complex field_multiplier(Field f, int alpha, int beta, double spacing,
+                                                       double inverse_k, int n) {
+  switch (f) {
+    case Field::height:
+      return 1.0;
+    case Field::slope_x:
+      return derivative_factor(alpha, spacing, n);
+    case Field::slope_z:
+      return derivative_factor(beta, spacing, n);
+    case Field::displacement_x:
+      return displacement_factor(alpha, spacing, inverse_k, n);
+    case Field::displacement_z:
+      return displacement_factor(beta, spacing, inverse_k, n);
+    // d(k_x, 1)·d(k_x, k) = (ik_x)(−ik_x/k) = k_x²/k, and likewise: real multipliers.
+    case Field::ddx_dx:
+      return derivative_factor(alpha, spacing, n).imag() *
+             -displacement_factor(alpha, spacing, inverse_k, n).imag();
+    case Field::ddz_dz:
+      return derivative_factor(beta, spacing, n).imag() *
+             -displacement_factor(beta, spacing, inverse_k, n).imag();
+    case Field::ddx_dz:
+      return derivative_factor(beta, spacing, n).imag() *
+             -displacement_factor(alpha, spacing, inverse_k, n).imag();
+  }
+  return 0.0;
+}
 
 // The 8 raw fields of one cascade on their grids (row-major [n·N + m]).
 struct CascadeFields {
@@ -53,10 +87,32 @@ struct CascadeFields {
   int transforms = 0;  // complex inverse FFTs used
 };
 
-// Synthesizes the raw fields at time t. `low` and `high` are the same cascade realized at the
-// two resolutions (the same object when multi-resolution is off).
+// Wall-clock seconds spent in each synthesis stage, accumulated when requested (benchmarks).
+struct SynthesisTimes {
+  double evolve = 0.0;     // h(k, t), eq. 4.7
+  double pack = 0.0;       // multipliers and pairing, eq. 4.8
+  double transform = 0.0;  // inverse 2-D FFTs
+  double unpack = 0.0;     // real and imaginary parts into fields
+};
+
+// An inverse 2-D DFT in the convention of inverse_fft_2d (benchmarks swap in FFTW).
+using InverseFft2d = void (*)(std::vector<Complex>& data, int resolution, int threads);
+
+// Buffers reused from frame to frame (a sequence allocates them once).
+struct SynthesisWorkspace {
+  std::vector<Complex> h_low, h_high, packed;
+};
+
+// Synthesizes the raw fields at time t into `out`, reusing its storage and the workspace.
+// `low` and `high` are the same cascade realized at the two resolutions (the same object when
+// multi-resolution is off).
+void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time,
+                        int threads, CascadeFields& out, SynthesisWorkspace& work,
+                        InverseFft2d fft = inverse_fft_2d, SynthesisTimes* times = nullptr);
+// The same with fresh storage.
 CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
-                                 double time, int threads);
+                                 double time, int threads, InverseFft2d fft = inverse_fft_2d,
+                                 SynthesisTimes* times = nullptr);
 
 // Fields combined over cascades at one point (Gamper eq. 4.22–4.26); per cascade the raw fields
 // and its choppiness u_i.

@@ -3,22 +3,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "waves/fft.h"
 #include "waves/random.h"
 
 namespace oceanref {
-
-int wave_index(int a, int n) {
-  return a < n / 2 ? a : a - n;
-}
-int array_index(int alpha, int n) {
-  return alpha < 0 ? alpha + n : alpha;
-}
-int conjugate_array_index(int a, int n) {
-  return (n - a) % n;
-}
-bool is_nyquist(int alpha, int n) {
-  return alpha == -n / 2;
-}
 
 double wavenumber_spacing(double size) {
   return 2.0 * std::numbers::pi / size;
@@ -38,36 +26,60 @@ Complex initial_amplitude(const Spectrum& spectrum, std::uint64_t seed, const Pa
   return {xi.real * scale, xi.imag * scale};
 }
 
-PatternSpectrum realize_pattern(const Spectrum& spectrum, std::uint64_t seed, const Pattern& p) {
+PatternSpectrum pattern_grid(const Spectrum& spectrum, const Pattern& p) {
   const int n = p.resolution;
   const double dk = wavenumber_spacing(p.size);
-  PatternSpectrum s{p, std::vector<Complex>(grid_cells(n)), std::vector<double>(grid_cells(n))};
+  PatternSpectrum s{p, std::vector<Complex>(grid_cells(n)), std::vector<double>(grid_cells(n)),
+                    std::vector<double>(grid_cells(n))};
   for (int b = 0; b < n; ++b) {
     for (int a = 0; a < n; ++a) {
-      const int alpha = wave_index(a, n);
-      const int beta = wave_index(b, n);
       const std::size_t i = grid_offset(a, b, n);
-      s.h0[i] = initial_amplitude(spectrum, seed, p, alpha, beta);
-      s.omega[i] = angular_frequency(spectrum.dispersion, std::hypot(alpha * dk, beta * dk));
+      const double k = std::hypot(wave_index(a, n) * dk, wave_index(b, n) * dk);
+      s.inverse_wavenumber[i] = k > 0.0 ? 1.0 / k : 0.0;
+      s.omega[i] = angular_frequency(spectrum.dispersion, k);
     }
   }
   return s;
 }
 
-std::vector<Complex> spectrum_at_time(const PatternSpectrum& s, double time) {
-  const int n = s.pattern.resolution;
-  std::vector<Complex> h(s.h0.size());
+PatternSpectrum realize_pattern(const Spectrum& spectrum, std::uint64_t seed, const Pattern& p) {
+  PatternSpectrum s = pattern_grid(spectrum, p);
+  const int n = p.resolution;
   for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      s.h0[grid_offset(a, b, n)] =
+          initial_amplitude(spectrum, seed, p, wave_index(a, n), wave_index(b, n));
+    }
+  }
+  return s;
+}
+
+std::vector<Complex> spectrum_at_time(const PatternSpectrum& s, double time, int threads) {
+  std::vector<Complex> h;
+  evolve_spectrum(s, time, threads, h);
+  return h;
+}
+
+void evolve_spectrum(const PatternSpectrum& s, double time, int threads, std::vector<Complex>& h) {
+  const int n = s.pattern.resolution;
+  h.resize(s.h0.size());
+  parallel_for(n, threads, [&](int b) {
     const int bc = conjugate_array_index(b, n);
     for (int a = 0; a < n; ++a) {
       const std::size_t i = grid_offset(a, b, n);
       const std::size_t ic = grid_offset(conjugate_array_index(a, n), bc, n);
       const double phase = s.omega[i] * time;
       const Complex forward(std::cos(phase), -std::sin(phase));  // e^{−iωt}
-      h[i] = 0.5 * (s.h0[i] * forward + std::conj(s.h0[ic] * forward));
+      const Complex p = s.h0[i];
+      const Complex q = s.h0[ic];
+      // ½[h0(k)e^{−iωt} + (h0(−k)e^{−iωt})*], the products written out (always finite).
+      const double ar = p.real() * forward.real() - p.imag() * forward.imag();
+      const double ai = p.real() * forward.imag() + p.imag() * forward.real();
+      const double br = q.real() * forward.real() - q.imag() * forward.imag();
+      const double bi = q.real() * forward.imag() + q.imag() * forward.real();
+      h[i] = Complex(0.5 * (ar + br), 0.5 * (ai - bi));
     }
-  }
-  return h;
+  });
 }
 
 }  // namespace oceanref

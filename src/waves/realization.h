@@ -37,10 +37,18 @@ inline std::size_t grid_cells(int n) {
   return grid_offset(0, n, n);
 }
 
-int wave_index(int array_index, int resolution);             // a → α
-int array_index(int wave_index, int resolution);             // α → a
-int conjugate_array_index(int array_index, int resolution);  // Gamper eq. 4.9
-bool is_nyquist(int wave_index, int resolution);             // α = −N/2
+inline int wave_index(int a, int n) {
+  return a < n / 2 ? a : a - n;
+}  // a → α
+inline int array_index(int alpha, int n) {
+  return alpha < 0 ? alpha + n : alpha;
+}  // α → a
+inline int conjugate_array_index(int a, int n) {
+  return (n - a) % n;
+}  // Gamper eq. 4.9
+inline bool is_nyquist(int alpha, int n) {
+  return alpha == -n / 2;
+}  // α = −N/2
 
 // Δk = 2π/L [rad/m]
 double wavenumber_spacing(double size);
@@ -53,13 +61,19 @@ Complex initial_amplitude(const Spectrum& spectrum, std::uint64_t seed, const Pa
 // A pattern's frozen random spectrum h0 and the angular frequency ω(|k|) of every entry.
 struct PatternSpectrum {
   Pattern pattern;
-  std::vector<Complex> h0;    // [b·N + a]
+  std::vector<Complex> h0;                 // [b·N + a]
+  std::vector<double> inverse_wavenumber;  // 1/|k| [m/rad], 0 at k = 0
   std::vector<double> omega;  // ω(|k|) [rad/s] from the spectrum's dispersion relation
 };
 
+// The grid of a pattern with h0 = 0 (1/|k| and ω filled in).
+PatternSpectrum pattern_grid(const Spectrum& spectrum, const Pattern& p);
+// The grid with h0 drawn from the spectrum (eq. 4.2).
 PatternSpectrum realize_pattern(const Spectrum& spectrum, std::uint64_t seed, const Pattern& p);
 
 // h(k, t) = ½h0(k)e^{−iωt} + ½h0(−k)* e^{iωt}  (Gamper eq. 4.7): Hermitian, h(−k) = h(k)*.
-std::vector<Complex> spectrum_at_time(const PatternSpectrum& s, double time);
+// Rows are split among `threads`; every entry is computed alone, so the result is the same.
+void evolve_spectrum(const PatternSpectrum& s, double time, int threads, std::vector<Complex>& h);
+std::vector<Complex> spectrum_at_time(const PatternSpectrum& s, double time, int threads = 1);
 
 }  // namespace oceanref

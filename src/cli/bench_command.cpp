@@ -1,0 +1,249 @@
+#include "cli/bench_command.h"
+
+#include <fftw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <numeric>
+#include <ostream>
+#include <string>
+
+#include "cli/text.h"
+#include "waves/ocean.h"
+
+namespace oceanref::cli {
+
+namespace {
+// FFTW double with the same structure as inverse_fft_2d: 1-D transforms of the rows, then of
+// the columns, split among threads. One FFTW_MEASURE plan per size, made before any thread runs
+// (the planner is not thread-safe; fftw_execute_dft is).
+fftw_plan row_plan(int n) {
+  static std::mutex mutex;
+  static std::map<int, fftw_plan> plans;
+  const std::lock_guard lock(mutex);
+  auto it = plans.find(n);
+  if (it == plans.end()) {
+    fftw_complex* a = fftw_alloc_complex(static_cast<std::size_t>(n));
+    fftw_complex* b = fftw_alloc_complex(static_cast<std::size_t>(n));
+    it = plans.emplace(n, fftw_plan_dft_1d(n, a, b, FFTW_BACKWARD, FFTW_MEASURE)).first;
+    fftw_free(a);
+    fftw_free(b);
+  }
+  return it->second;
+}
+
+void inverse_fft_2d_fftw(std::vector<Complex>& data, int n, int threads) {
+  const fftw_plan plan = row_plan(n);
+  const auto stride = static_cast<std::size_t>(n);
+  parallel_for(n, threads, [&](int row) {
+    fftw_complex* line = fftw_alloc_complex(stride);
+    fftw_complex* out = fftw_alloc_complex(stride);
+    Complex* values = &data[static_cast<std::size_t>(row) * stride];
+    for (std::size_t j = 0; j < stride; ++j) {
+      line[j][0] = values[j].real();
+      line[j][1] = values[j].imag();
+    }
+    fftw_execute_dft(plan, line, out);
+    for (std::size_t j = 0; j < stride; ++j) values[j] = Complex(out[j][0], out[j][1]);
+    fftw_free(line);
+    fftw_free(out);
+  });
+  constexpr int kBlock = 8;  // the column blocks of inverse_fft_2d
+  parallel_for((n + kBlock - 1) / kBlock, threads, [&](int block) {
+    const int first = block * kBlock;
+    const auto count = static_cast<std::size_t>(std::min(kBlock, n - first));
+    fftw_complex* in = fftw_alloc_complex(count * stride);
+    fftw_complex* out = fftw_alloc_complex(count * stride);
+    for (std::size_t r = 0; r < stride; ++r) {
+      for (std::size_t c = 0; c < count; ++c) {
+        const Complex v = data[r * stride + static_cast<std::size_t>(first) + c];
+        in[c * stride + r][0] = v.real();
+        in[c * stride + r][1] = v.imag();
+      }
+    }
+    for (std::size_t c = 0; c < count; ++c)
+      fftw_execute_dft(plan, in + c * stride, out + c * stride);
+    for (std::size_t r = 0; r < stride; ++r) {
+      for (std::size_t c = 0; c < count; ++c) {
+        data[r * stride + static_cast<std::size_t>(first) + c] =
+            Complex(out[c * stride + r][0], out[c * stride + r][1]);
+      }
+    }
+    fftw_free(in);
+    fftw_free(out);
+  });
+}
+
+struct Flags {
+  int cascades = 4;
+  int resolution = 256;
+  int low_resolution = 0;
+  int threads = 2;
+  int frames = 20;
+  std::uint64_t seed = 1;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Run {
+  std::vector<double> frame_ms;
+  SynthesisTimes stages;
+};
+
+Run time_pipeline(const Ocean& ocean, const Flags& f, InverseFft2d fft) {
+  Run run;
+  // Storage is allocated once for the sequence, as a renderer would; frame −1 warms up (FFTW
+  // plans, first touch of the buffers).
+  std::vector<CascadeFields> fields(ocean.cascades.size());
+  std::vector<SynthesisWorkspace> work(ocean.cascades.size());
+  for (int frame = -1; frame < f.frames; ++frame) {
+    SynthesisTimes times;
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
+      const CascadeSpectra& c = ocean.cascades[i];
+      synthesize_cascade(c.low, c.high, 0.1 * frame, f.threads, fields[i], work[i], fft, &times);
+    }
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (frame < 0) continue;
+    run.frame_ms.push_back(ms);
+    run.stages.evolve += times.evolve * 1e3 / f.frames;
+    run.stages.pack += times.pack * 1e3 / f.frames;
+    run.stages.transform += times.transform * 1e3 / f.frames;
+    run.stages.unpack += times.unpack * 1e3 / f.frames;
+  }
+  return run;
+}
+
+// One field of one pattern computed entirely in float (the arithmetic of a GPU shader):
+// h(k, t) with float phases, float multipliers and an FFTW float transform.
+std::vector<float> float_field(const PatternSpectrum& s, double time, Field field) {
+  const int n = s.pattern.resolution;
+  const auto dk = static_cast<float>(wavenumber_spacing(s.pattern.size));
+  fftwf_complex* c = fftwf_alloc_complex(grid_cells(n));
+  const fftwf_plan plan = fftwf_plan_dft_2d(n, n, c, c, FFTW_BACKWARD, FFTW_ESTIMATE);
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      const std::size_t i = grid_offset(a, b, n);
+      const std::size_t ic =
+          grid_offset(conjugate_array_index(a, n), conjugate_array_index(b, n), n);
+      const float phase = static_cast<float>(s.omega[i]) * static_cast<float>(time);
+      const std::complex<float> forward(std::cos(phase), -std::sin(phase));
+      const std::complex<float> h0(s.h0[i]);
+      const std::complex<float> h0c(s.h0[ic]);
+      const std::complex<float> h = 0.5f * (h0 * forward + std::conj(h0c * forward));
+      const Complex m = field_multiplier(field, wave_index(a, n), wave_index(b, n), dk,
+                                         s.inverse_wavenumber[i], n);
+      const std::complex<float> v = std::complex<float>(m) * h;
+      c[i][0] = v.real();
+      c[i][1] = v.imag();
+    }
+  }
+  fftwf_execute(plan);
+  std::vector<float> out(grid_cells(n));
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = c[i][0];
+  fftwf_destroy_plan(plan);
+  fftwf_free(c);
+  return out;
+}
+
+void bench_synthesis(std::ostream& out, const Flags& f) {
+  WaveSettings w;
+  w.seed = f.seed;
+  w.sizes = golden_ratio_sizes(1000.0, f.cascades, GoldenFactor::small);
+  w.resolution = f.resolution;
+  w.low_resolution = f.low_resolution > 0 ? f.low_resolution : f.resolution;
+  w.choppiness.assign(w.sizes.size(), -1.0);
+  const Ocean ocean = realize_ocean(w, f.threads);
+  const Run kiss = time_pipeline(ocean, f, inverse_fft_2d);
+  const Run fftw = time_pipeline(ocean, f, inverse_fft_2d_fftw);
+  // The two FFTs must give the same fields (to rounding), or the timing comparison is moot.
+  double worst = 0.0;
+  const CascadeSpectra& c0 = ocean.cascades[0];
+  const CascadeFields a = synthesize_cascade(c0.low, c0.high, 1.0, f.threads);
+  const CascadeFields b = synthesize_cascade(c0.low, c0.high, 1.0, f.threads, inverse_fft_2d_fftw);
+  for (std::size_t q = 0; q < a.values.size(); ++q) {
+    for (std::size_t i = 0; i < a.values[q].size(); ++i) {
+      worst = std::max(worst, std::fabs(a.values[q][i] - b.values[q][i]));
+    }
+  }
+  out << "# oceanref bench synthesis: " << f.cascades << " cascades, N_h = " << w.resolution
+      << ", N_l = " << w.low_resolution << ", " << f.threads << " threads, " << f.frames
+      << " frames (JONSWAP 10 m/s, sizes 1000·(1-1/phi)^i m)\n"
+      << "fft,frame_ms_median,evolve_ms,pack_ms,transform_ms,unpack_ms\n";
+  for (const auto& [name, run] : {std::pair{"kissfft", &kiss}, std::pair{"fftw", &fftw}}) {
+    out << name << ',' << format_number(median(run->frame_ms)) << ','
+        << format_number(run->stages.evolve) << ',' << format_number(run->stages.pack) << ','
+        << format_number(run->stages.transform) << ',' << format_number(run->stages.unpack) << '\n';
+  }
+  out << "# kissfft/fftw frame time ratio: "
+      << format_number(median(kiss.frame_ms) / median(fftw.frame_ms))
+      << ", transform-stage ratio: " << format_number(kiss.stages.transform / fftw.stages.transform)
+      << "; largest field difference kissfft vs fftw: " << format_number(worst) << "\n";
+  // Float vs double: every field of cascade 0 (the largest amplitudes) at two times.
+  out << "time_s,field,max_abs_double,max_abs_float_minus_double,relative\n";
+  for (const double t : {10.0, 1000.0}) {
+    const CascadeFields d = synthesize_cascade(c0.low, c0.high, t, f.threads);
+    for (int q = 0; q < kFieldCount; ++q) {
+      const Field field = Field(q);
+      const PatternSpectrum& s = is_low_resolution_field(field) ? c0.low : c0.high;
+      const std::vector<float> single = float_field(s, t, field);
+      const std::vector<double>& exact = d.values[static_cast<std::size_t>(q)];
+      double peak = 0.0;
+      double error = 0.0;
+      for (std::size_t i = 0; i < exact.size(); ++i) {
+        peak = std::max(peak, std::fabs(exact[i]));
+        error = std::max(error, std::fabs(static_cast<double>(single[i]) - exact[i]));
+      }
+      out << format_number(t) << ',' << kFieldNames[static_cast<std::size_t>(q)] << ','
+          << format_number(peak) << ',' << format_number(error) << ','
+          << format_number(error / peak) << '\n';
+    }
+  }
+}
+}  // namespace
+
+std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
+  auto flags = std::make_shared<Flags>();
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Speed and accuracy figures (see reference/ACCURACY.md); not part of the tests.");
+  bench->require_subcommand(1);
+  CLI::App* synthesis = bench->add_subcommand(
+      "synthesis",
+      "Time one frame of wave synthesis per stage with KissFFT and, in the same run, FFTW "
+      "double; report the float-vs-double difference of every field.");
+  synthesis->add_option("--cascades", flags->cascades, "number of cascades")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  synthesis->add_option("--resolution", flags->resolution, "N_h, a power of two in [4, 4096]")
+      ->capture_default_str();
+  synthesis->add_option("--low-resolution", flags->low_resolution,
+                        "N_l for eta and D (default: N_h, no multi-resolution)");
+  synthesis->add_option("--threads", flags->threads, "worker threads")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  synthesis->add_option("--frames", flags->frames, "timed frames (median reported)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  return [flags, synthesis](std::ostream& out) {
+    const auto power_of_two = [](int n, int hi) { return n >= 4 && n <= hi && (n & (n - 1)) == 0; };
+    if (!power_of_two(flags->resolution, 4096)) {
+      throw UsageError("--resolution", "must be a power of two in [4, 4096], got " +
+                                           std::to_string(flags->resolution));
+    }
+    if (flags->low_resolution != 0 && !power_of_two(flags->low_resolution, flags->resolution)) {
+      throw UsageError("--low-resolution", "must be a power of two in [4, --resolution], got " +
+                                               std::to_string(flags->low_resolution));
+    }
+    if (synthesis->parsed()) bench_synthesis(out, *flags);
+  };
+}
+
+}  // namespace oceanref::cli
