@@ -101,6 +101,10 @@ expect 0 '^cascade,field,fft,direct,difference$' fields "$tmp/scene.json" --at 0
 [ "$(wc -l <"$tmp/out")" -eq 22 ] || fail "fields --at did not print 2x8 + 5 rows"
 awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
   fail "fields --at 0,0: FFT and direct summation differ by more than 1e-12"
+sed 's/"choppiness": -0.9/"choppiness": -0.9, "realization": "mastin"/' "$tmp/scene.json" >"$tmp/mastin.json"
+expect 0 '^cascade,field' fields "$tmp/mastin.json" --at 0,0
+awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
+  fail "fields --at 0,0 (mastin): FFT and direct summation differ by more than 1e-12"
 printf '{"waves": {"resolution": 48}}' >"$tmp/bad.json"
 expect 2 'waves.resolution.*power of two' fields "$tmp/bad.json" --at 0,0
 printf '{"waves": {"choppiness": 0.5}}' >"$tmp/bad.json"

@@ -9,6 +9,7 @@
 #include "waves/direct_sum.h"
 #include "waves/fft.h"
 #include "waves/fields.h"
+#include "waves/mastin.h"
 #include "waves/random.h"
 
 using namespace oceanref;
@@ -381,4 +382,57 @@ TEST_CASE("foam accumulation (Vincevicius listing 2.4) and normals") {
   CHECK(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2] ==
         doctest::Approx(1.0).epsilon(1e-15));
   CHECK(normal[0] / normal[1] == doctest::Approx(-0.3));
+}
+
+TEST_CASE(
+    "Mastin 1987: white noise has unit variance, the filtered field is real and has the "
+    "spectrum's variance") {
+  const Spectrum s = jonswap();
+  const int n = 16;
+  const double size = 400.0;
+  Band inside;
+  inside.upper = nyquist_wavenumber(size, n);
+  const Pattern p = pattern(size, n, inside);
+  const std::vector<double> noise = mastin_white_noise(3, p);
+  for (const double v : noise) CHECK(std::fabs(v) < std::sqrt(3.0));
+  // The filtered spectrum keeps the real image's Hermitian symmetry: h(k, t) = h(−k, t)*.
+  const PatternSpectrum r = realize_pattern_mastin(s, 3, p, 2);
+  const std::vector<Complex> h = spectrum_at_time(r, 5.0);
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      CHECK(h[grid_offset(a, b, n)] ==
+            std::conj(h[grid_offset(conjugate_array_index(a, n), conjugate_array_index(b, n), n)]));
+    }
+  }
+  // Each pair travels downwind: |h(k, t)| is constant in time (a travelling, not standing, wave).
+  const std::vector<Complex> later = spectrum_at_time(r, 17.0);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    CHECK(std::abs(later[i]) == doctest::Approx(std::abs(h[i])).epsilon(1e-12));
+  }
+  // Mean sample variance over seeds → ΣΘΔk² in the band, within 4 standard errors.
+  const double dk = wavenumber_spacing(size);
+  double expected = 0.0;
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      const double kx = wave_index(a, n) * dk;
+      const double kz = wave_index(b, n) * dk;
+      if (inside.contains(std::hypot(kx, kz))) expected += wavevector_spectrum(s, kx, kz) * dk * dk;
+    }
+  }
+  const int seeds = 400;
+  double mean = 0.0;
+  double mean_square = 0.0;
+  for (int seed = 0; seed < seeds; ++seed) {
+    const PatternSpectrum m = realize_pattern_mastin(s, static_cast<std::uint64_t>(seed), p, 1);
+    const CascadeFields f = synthesize_cascade(m, m, 0.0, 1);
+    double variance = 0.0;
+    for (const double v : f.values[0]) variance += v * v;
+    variance /= static_cast<double>(f.values[0].size());
+    mean += variance / seeds;
+    mean_square += variance * variance / seeds;
+  }
+  const double standard_error = std::sqrt((mean_square - mean * mean) / seeds);
+  CAPTURE(mean);
+  CAPTURE(expected);
+  CHECK(std::fabs(mean - expected) < 4.0 * standard_error);
 }

@@ -276,7 +276,7 @@ Scene parse_scene(const json& document) {
   const Section waves(top.at("waves"), "waves",
                       {"spectrum", "spreading", "dispersion", "cascades", "resolution",
                        "low_resolution", "choppiness", "allow_positive_choppiness",
-                       "band_partitioning", "minimum_wavelength", "foam"});
+                       "band_partitioning", "minimum_wavelength", "foam", "realization"});
   const json empty = json::object();
   const Section spectrum(waves.has("spectrum") ? waves.at("spectrum") : empty, "waves.spectrum",
                          {"model", "wind_speed", "wind_direction_deg", "fetch", "depth", "gravity",
@@ -297,6 +297,14 @@ Scene parse_scene(const json& document) {
   w.choppiness =
       parse_choppiness(waves, w.sizes.size(), waves.boolean("allow_positive_choppiness", false));
   w.band_partitioning = waves.boolean("band_partitioning", true);
+  const std::string realization = waves.text("realization", "gaussian");
+  if (realization != "gaussian" && realization != "mastin") {
+    throw SceneError(waves.where("realization"),
+                     "expected gaussian (Gamper eq. 4.2) or mastin (Mastin 1987 white-noise "
+                     "filter); got '" +
+                         realization + "'");
+  }
+  w.realization = realization == "mastin" ? Realization::mastin : Realization::gaussian;
   if (w.band_partitioning) {
     for (std::size_t i = 1; i < w.sizes.size(); ++i) {
       if (!(w.sizes[i] < w.sizes[i - 1])) {

@@ -13,7 +13,7 @@ static_assert(sizeof(kiss_fft_scalar) == sizeof(double), "KissFFT must use doubl
 static_assert(sizeof(kiss_fft_cpx) == sizeof(std::complex<double>));
 
 struct KissConfig {
-  explicit KissConfig(int n) : cfg(kiss_fft_alloc(n, 1, nullptr, nullptr)) {
+  KissConfig(int n, bool inverse) : cfg(kiss_fft_alloc(n, inverse ? 1 : 0, nullptr, nullptr)) {
     if (cfg == nullptr) throw std::bad_alloc();
   }
   ~KissConfig() { kiss_fft_free(cfg); }
@@ -28,7 +28,15 @@ kiss_fft_cpx* as_kiss(std::complex<double>* p) {
 }  // namespace
 
 void inverse_fft_2d(std::vector<std::complex<double>>& data, int n, int threads) {
-  const KissConfig config(n);
+  fft_2d(data, n, threads, true);
+}
+
+void forward_fft_2d(std::vector<std::complex<double>>& data, int n, int threads) {
+  fft_2d(data, n, threads, false);
+}
+
+void fft_2d(std::vector<std::complex<double>>& data, int n, int threads, bool inverse) {
+  const KissConfig config(n, inverse);
   const auto stride = static_cast<std::size_t>(n);
   parallel_for(n, threads, [&](int row) {
     std::vector<std::complex<double>> out(stride);

@@ -5,6 +5,7 @@
 
 #include "waves/direct_sum.h"
 #include "waves/fft.h"
+#include "waves/mastin.h"
 
 namespace oceanref {
 

@@ -13,8 +13,12 @@
 
 namespace oceanref {
 
+// How h0 is drawn: Gaussian amplitudes (Gamper eq. 4.2) or Mastin's filtered white noise.
+enum class Realization { gaussian, mastin };
+
 struct WaveSettings {
   std::uint64_t seed = 1;
+  Realization realization = Realization::gaussian;
   SpectrumSettings spectrum;
   std::vector<double> sizes{1000.0};    // L_i [m], decreasing when band-partitioned
   int resolution = 256;                 // N_h: slopes and derivatives of D
