@@ -98,7 +98,7 @@ for t in 2 3 8; do
 done
 # At a node of both cascades (x = z = 0) the FFT grid and the direct sum agree to rounding.
 expect 0 '^cascade,field,fft,direct,difference$' fields "$tmp/scene.json" --at 0,0 --time 7
-[ "$(wc -l <"$tmp/out")" -eq 22 ] || fail "fields --at did not print 2x8 + 5 rows"
+[ "$(wc -l <"$tmp/out")" -eq 25 ] || fail "fields --at did not print 2x8 + 8 rows"
 awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
   fail "fields --at 0,0: FFT and direct summation differ by more than 1e-12"
 sed 's/"choppiness": -0.9/"choppiness": -0.9, "realization": "mastin"/' "$tmp/scene.json" >"$tmp/mastin.json"

@@ -278,8 +278,10 @@ TEST_CASE("the discrete energy sum Theta dk^2 converges to m0 as L and N grow") 
   const Spectrum s = jonswap();
   double previous_error = 1.0;
   // Same Nyquist wavenumber πN/L = 0.4 rad/m (5 k_p), finer and finer sampling.
-  for (const auto& [size, n] :
+  for (const auto& [tile, grid] :
        std::vector<std::pair<double, int>>{{500.0, 64}, {1000.0, 128}, {2000.0, 256}}) {
+    const double size = tile;  // plain copies: lambdas (CAPTURE) cannot capture bindings in C++20
+    const int n = grid;
     const double k_max = nyquist_wavenumber(size, n);
     const double dk = wavenumber_spacing(size);
     double sum = 0.0;

@@ -16,6 +16,8 @@ commands=(
   "spectrum --model jonswap --spreading mitsuyasu --swell 0.6 --spread-blend 0.3 --omega 1 --theta-deg 0,30,120"
   "spectrum --model pierson-moskowitz --moments"
   "spectrum --model unified --moments"
+  "fields reference/scenes/waves_default.json --at 0,0 --time 3"
+  "fields reference/scenes/waves_default.json --at 123.4,-56.7 --time 1000"
 )
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -28,5 +30,12 @@ for c in "${commands[@]}"; do
     failures=$((failures + 1))
   fi
 done
-echo "compare_compilers: ${#commands[@]} commands, $failures differ between gcc and clang"
+# The fields EXR: identical files imply identical decoded pixels.
+build/src/oceanref fields reference/scenes/waves_default.json -o "$tmp/gcc.exr"
+build-clang/src/oceanref fields reference/scenes/waves_default.json -o "$tmp/clang.exr"
+if ! cmp -s "$tmp/gcc.exr" "$tmp/clang.exr"; then
+  echo "FAIL: gcc and clang builds write different fields EXR files" >&2
+  failures=$((failures + 1))
+fi
+echo "compare_compilers: $((${#commands[@]} + 1)) outputs, $failures differ between gcc and clang"
 [ "$failures" -eq 0 ]

@@ -126,7 +126,7 @@ Run time_pipeline(const Ocean& ocean, const Flags& f, InverseFft2d fft) {
 // h(k, t) with float phases, float multipliers and an FFTW float transform.
 std::vector<float> float_field(const PatternSpectrum& s, double time, Field field) {
   const int n = s.pattern.resolution;
-  const auto dk = static_cast<float>(wavenumber_spacing(s.pattern.size));
+  const double dk = wavenumber_spacing(s.pattern.size);
   fftwf_complex* c = fftwf_alloc_complex(grid_cells(n));
   const fftwf_plan plan = fftwf_plan_dft_2d(n, n, c, c, FFTW_BACKWARD, FFTW_ESTIMATE);
   for (int b = 0; b < n; ++b) {

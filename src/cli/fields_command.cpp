@@ -76,6 +76,14 @@ void write_fields_exr(const std::string& path, const Scene& scene, const Ocean& 
   sum_channel("slope_x", &PointFields::slope_x);
   sum_channel("slope_z", &PointFields::slope_z);
   sum_channel("jacobian", &PointFields::jacobian);
+  for (int axis = 0; axis < 3; ++axis) {  // n = (−s_x, 1, −s_z)/‖·‖ (Gamper §4.3)
+    std::vector<float> v(sum.size());
+    for (std::size_t i = 0; i < sum.size(); ++i) {
+      v[i] = static_cast<float>(
+          surface_normal(sum[i].slope_x, sum[i].slope_z)[static_cast<std::size_t>(axis)]);
+    }
+    image.channels.push_back({std::string("sum.normal_") + "xyz"[axis], 1, std::move(v)});
+  }
   sum_channel("foam", &PointFields::foam);
   image.attributes["oceanref.cascade_sizes_m"] = sizes;
   image.attributes["oceanref.time_s"] = format_number(scene.time);
@@ -111,6 +119,11 @@ void write_point(std::ostream& out, const Scene& scene, const Ocean& ocean, doub
   row("sum", "slope_x", g.slope_x, d.slope_x);
   row("sum", "slope_z", g.slope_z, d.slope_z);
   row("sum", "jacobian", g.jacobian, d.jacobian);
+  const auto ng = surface_normal(g.slope_x, g.slope_z);
+  const auto nd = surface_normal(d.slope_x, d.slope_z);
+  row("sum", "normal_x", ng[0], nd[0]);
+  row("sum", "normal_y", ng[1], nd[1]);
+  row("sum", "normal_z", ng[2], nd[2]);
   row("sum", "foam", g.foam, d.foam);
 }
 }  // namespace
@@ -127,7 +140,8 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
   auto* output = cmd->add_option(
       "-o,--output", flags->output,
       "OUT.exr: channels c<i>.height, slope_x, slope_z, disp_x, disp_z, ddx_dx, ddz_dz, ddx_dz, "
-      "jacobian, foam per cascade i and sum.height, slope_x, slope_z, jacobian, foam");
+      "jacobian, foam per cascade i and sum.height, slope_x, slope_z, jacobian, normal_x, "
+      "normal_y, normal_z, foam");
   auto* at = cmd->add_option("--at", flags->at,
                              "x,z [m] -> CSV cascade,field,fft,direct,difference (FFT grid: exact "
                              "at nodes, bilinear between; direct: summation of every component)");
