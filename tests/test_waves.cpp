@@ -36,6 +36,42 @@ PatternSpectrum single_wave(const Spectrum& s, double size, int n, int alpha, in
   return p;
 }
 
+// ΣΘ(k)Δk² over the grid wavevectors inside a band (eq. 3.34 restricted to what is sampled).
+double band_energy(const Spectrum& s, const Pattern& p) {
+  const int n = p.resolution;
+  const double dk = wavenumber_spacing(p.size);
+  double sum = 0.0;
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      const double kx = wave_index(a, n) * dk;
+      const double kz = wave_index(b, n) * dk;
+      if (p.band.contains(std::hypot(kx, kz))) sum += wavevector_spectrum(s, kx, kz) * dk * dk;
+    }
+  }
+  return sum;
+}
+
+// The mean over seeds 0…count−1 of the grid variance of η, and its standard error.
+struct Estimate {
+  double mean = 0.0;
+  double standard_error = 0.0;
+};
+template <class Realize>
+Estimate mean_height_variance(int count, const Realize& realize) {
+  double mean = 0.0;
+  double mean_square = 0.0;
+  for (int seed = 0; seed < count; ++seed) {
+    const PatternSpectrum r = realize(static_cast<std::uint64_t>(seed));
+    const CascadeFields f = synthesize_cascade(r, r, 0.0, 1);
+    double variance = 0.0;
+    for (const double v : f.values[0]) variance += v * v;
+    variance /= static_cast<double>(f.values[0].size());
+    mean += variance / count;
+    mean_square += variance * variance / count;
+  }
+  return {mean, std::sqrt((mean_square - mean * mean) / count)};
+}
+
 double field_at(const CascadeFields& f, Field which, int m, int n_index) {
   const int n = is_low_resolution_field(which) ? f.low_resolution : f.high_resolution;
   return f.values[static_cast<std::size_t>(which)][grid_offset(m, n_index, n)];
@@ -242,36 +278,16 @@ TEST_CASE("statistics: mean sample variance of eta tends to sum Theta dk^2 (eq. 
   const Spectrum s = jonswap();
   const int n = 16;
   const double size = 400.0;
-  const double dk = wavenumber_spacing(size);
   Band inside;  // leave out the Nyquist lines, whose partner is themselves
   inside.upper = nyquist_wavenumber(size, n);
   const Pattern q = pattern(size, n, inside);
-  const int seeds = 400;
-  double mean = 0.0;
-  double mean_square = 0.0;
-  for (int seed = 0; seed < seeds; ++seed) {
-    const PatternSpectrum r = realize_pattern(s, static_cast<std::uint64_t>(seed), q);
-    const CascadeFields f = synthesize_cascade(r, r, 0.0, 1);
-    double variance = 0.0;
-    for (const double v : f.values[0]) variance += v * v;
-    variance /= static_cast<double>(f.values[0].size());
-    mean += variance / seeds;
-    mean_square += variance * variance / seeds;
-  }
-  // Restrict the expectation to the band actually sampled (|k| < πN/L).
-  double in_band = 0.0;
-  for (int b = 0; b < n; ++b) {
-    for (int a = 0; a < n; ++a) {
-      const double kx = wave_index(a, n) * dk;
-      const double kz = wave_index(b, n) * dk;
-      if (inside.contains(std::hypot(kx, kz))) in_band += wavevector_spectrum(s, kx, kz) * dk * dk;
-    }
-  }
-  const double standard_error = std::sqrt((mean_square - mean * mean) / seeds);
-  CAPTURE(mean);
-  CAPTURE(in_band);
-  CAPTURE(standard_error);
-  CHECK(std::fabs(mean - in_band) < 4.0 * standard_error);
+  const Estimate e =
+      mean_height_variance(400, [&](std::uint64_t seed) { return realize_pattern(s, seed, q); });
+  const double expected = band_energy(s, q);
+  CAPTURE(e.mean);
+  CAPTURE(expected);
+  CAPTURE(e.standard_error);
+  CHECK(std::fabs(e.mean - expected) < 4.0 * e.standard_error);
 }
 
 TEST_CASE("the discrete energy sum Theta dk^2 converges to m0 as L and N grow") {
@@ -412,29 +428,10 @@ TEST_CASE(
     CHECK(std::abs(later[i]) == doctest::Approx(std::abs(h[i])).epsilon(1e-12));
   }
   // Mean sample variance over seeds → ΣΘΔk² in the band, within 4 standard errors.
-  const double dk = wavenumber_spacing(size);
-  double expected = 0.0;
-  for (int b = 0; b < n; ++b) {
-    for (int a = 0; a < n; ++a) {
-      const double kx = wave_index(a, n) * dk;
-      const double kz = wave_index(b, n) * dk;
-      if (inside.contains(std::hypot(kx, kz))) expected += wavevector_spectrum(s, kx, kz) * dk * dk;
-    }
-  }
-  const int seeds = 400;
-  double mean = 0.0;
-  double mean_square = 0.0;
-  for (int seed = 0; seed < seeds; ++seed) {
-    const PatternSpectrum m = realize_pattern_mastin(s, static_cast<std::uint64_t>(seed), p, 1);
-    const CascadeFields f = synthesize_cascade(m, m, 0.0, 1);
-    double variance = 0.0;
-    for (const double v : f.values[0]) variance += v * v;
-    variance /= static_cast<double>(f.values[0].size());
-    mean += variance / seeds;
-    mean_square += variance * variance / seeds;
-  }
-  const double standard_error = std::sqrt((mean_square - mean * mean) / seeds);
-  CAPTURE(mean);
+  const Estimate e = mean_height_variance(
+      400, [&](std::uint64_t seed) { return realize_pattern_mastin(s, seed, p, 1); });
+  const double expected = band_energy(s, p);
+  CAPTURE(e.mean);
   CAPTURE(expected);
-  CHECK(std::fabs(mean - expected) < 4.0 * standard_error);
+  CHECK(std::fabs(e.mean - expected) < 4.0 * e.standard_error);
 }

@@ -5,6 +5,8 @@
 
 namespace oceanref {
 
+namespace {
+// e^{i·2π·α·x/L}, with the phase reduced modulo 2π exactly before the sine and cosine.
 Complex wave_phase(int index, double position, double size) {
   const double cycles = index * (std::fmod(position, size) / size);
   const double turn = cycles - std::nearbyint(cycles);
@@ -12,7 +14,6 @@ Complex wave_phase(int index, double position, double size) {
   return {std::cos(angle), std::sin(angle)};
 }
 
-namespace {
 // The basis function along one axis and its derivative: e^{ikx}, ik e^{ikx}; or cos(kx),
 // −k sin(kx) on the Nyquist line.
 struct AxisBasis {

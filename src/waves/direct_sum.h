@@ -19,7 +19,4 @@ namespace oceanref {
 std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const PatternSpectrum& high,
                                            double x, double z, double time);
 
-// e^{i·2π·α·x/L}, with the phase reduced modulo 2π exactly before the sine and cosine.
-Complex wave_phase(int index, double position, double size);
-
 }  // namespace oceanref
