@@ -156,3 +156,32 @@ TEST_CASE("ocean: combined FFT fields equal direct summation at common grid node
     }
   }
 }
+
+TEST_CASE("foam of a sequence: steps = 0 is the indicator; accumulation never drops below it") {
+  json s = minimal();
+  s["waves"]["cascades"]["sizes"] = json::array({40});
+  s["waves"]["resolution"] = 32;
+  s["waves"]["spectrum"]["wind_speed"] = 20;
+  s["waves"]["choppiness"] = -10.0;  // strong enough to fold the surface somewhere
+  const Scene scene = parse_scene(s);
+  const Ocean ocean = realize_ocean(scene.waves, 1);
+  const auto fields = synthesize_ocean(ocean, scene.time, 1);
+  const std::vector<double> j = cascade_jacobian(fields[0], ocean.cascades[0].choppiness);
+  FoamSequence none;
+  const AccumulatedFoam now = accumulate_foam(ocean, scene.time, none, 1);
+  int folded = 0;
+  for (std::size_t c = 0; c < j.size(); ++c) {
+    CHECK(now.cascades[0][c] == (j[c] < 0.0 ? 1.0 : 0.0));
+    folded += j[c] < 0.0 ? 1 : 0;
+  }
+  CHECK(folded > 0);
+  FoamSequence sequence{0.5, 0.1, 5};
+  const AccumulatedFoam acc = accumulate_foam(ocean, scene.time, sequence, 2);
+  int lingering = 0;
+  for (std::size_t c = 0; c < j.size(); ++c) {
+    CHECK(acc.cascades[0][c] >= now.cascades[0][c]);
+    CHECK(acc.cascades[0][c] <= 1.0);
+    lingering += acc.cascades[0][c] > now.cascades[0][c] ? 1 : 0;
+  }
+  CHECK(lingering > 0);  // foam from earlier frames decays instead of vanishing
+}
