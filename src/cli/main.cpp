@@ -6,6 +6,7 @@
 
 #include "cli/bench_command.h"
 #include "cli/fields_command.h"
+#include "cli/sky_command.h"
 #include "cli/spectrum_command.h"
 #include "cli/text.h"
 
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const auto run_spectrum = oceanref::cli::add_spectrum_command(app);
   const auto run_fields = oceanref::cli::add_fields_command(app);
+  const auto run_sky = oceanref::cli::add_sky_command(app);
   const auto run_bench = oceanref::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
     std::ostringstream out;
     if (app.got_subcommand("spectrum")) run_spectrum(out);
     if (app.got_subcommand("fields")) run_fields(out);
+    if (app.got_subcommand("sky")) run_sky(out);
     if (app.got_subcommand("bench")) run_bench(out);
     std::cout << out.str() << std::flush;
     return std::cout ? 0 : 2;
