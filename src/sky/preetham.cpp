@@ -1,9 +1,11 @@
 #include "sky/preetham.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sky/spectral_tables.h"
 #include "spectrum/quadrature.h"
@@ -214,6 +216,14 @@ SkyIrradiance sky_irradiance(const Sky& sky, double relative_tolerance) {
   const double sun_azimuth = std::atan2(sky.sun_direction[2], sky.sun_direction[0]);
   const QuadratureTolerance inner_tolerance{relative_tolerance * 0.1, 0.0, 4000};
   const QuadratureTolerance outer_tolerance{relative_tolerance, 0.0, 4000};
+  // θ breakpoints: the sun's zenith angle (circumsolar peak), ascending.
+  std::vector<double> thetas{0.0, 0.25 * kPi, 0.5 * kPi};
+  const double sun_theta = sky.model_sun_zenith;
+  if (sun_theta > 1e-3 && sun_theta < 0.5 * kPi - 1e-3 &&
+      std::fabs(sun_theta - 0.25 * kPi) > 1e-3) {
+    thetas.push_back(sun_theta);
+    std::sort(thetas.begin(), thetas.end());
+  }
   SkyIrradiance out{};
   for (std::size_t component = 0; component < 3; ++component) {
     // E = ∫₀^{π/2} cos θ sin θ ∫_{−π}^{π} L(θ, φ) dφ dθ, φ measured from the sun's azimuth.
@@ -229,8 +239,7 @@ SkyIrradiance sky_irradiance(const Sky& sky, double relative_tolerance) {
                   .value;
           return std::cos(theta) * std::sin(theta) * ring;
         },
-        {0.0, 0.25 * kPi, std::fmin(sky.model_sun_zenith, 0.5 * kPi - 1e-3), 0.5 * kPi},
-        outer_tolerance);
+        thetas, outer_tolerance);
     out.xyz[component] = r.value;
     out.relative_error = std::fmax(out.relative_error, r.error / std::fabs(r.value));
   }

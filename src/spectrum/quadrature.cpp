@@ -68,7 +68,8 @@ QuadratureResult integrate(const std::function<double(double)>& f,
   for (std::size_t i = 0; i + 1 < breakpoints.size(); ++i) {
     const double a = breakpoints[i];
     const double b = breakpoints[i + 1];
-    if (!(b > a)) continue;
+    if (b < a) throw std::invalid_argument("integrate: breakpoints must be ascending");
+    if (!(b > a)) continue;  // repeated breakpoint
     Piece p =
         std::isinf(b) ? Piece{0.0, 1.0, true, a, 0.0, 0.0} : Piece{a, b, false, 1.0, 0.0, 0.0};
     if (p.mapped && !(a > 0.0)) throw std::invalid_argument("integrate: tail needs a > 0");

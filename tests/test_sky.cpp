@@ -1,0 +1,157 @@
+// Preetham sky and sun: identities, published and independent values, limits.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "sky/preetham.h"
+#include "sky/spectral_tables.h"
+
+using namespace oceanref;
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+constexpr double kDeg = kPi / 180.0;
+}  // namespace
+
+TEST_CASE(
+    "CIE 1931 observer table: the three functions have equal integrals (equal-energy white)") {
+  // CIE normalizes x̄, ȳ, z̄ to equal areas (the equal-energy illuminant has x = y = 1/3); the
+  // 5-nm sums of the published table agree to 0.1% (the table's own rounding), 106.86 nm.
+  double x = 0.0, y = 0.0, z = 0.0;
+  for (const ColorMatchingSample& c : kCie1931Observer) {
+    x += 5.0 * c.x;
+    y += 5.0 * c.y;
+    z += 5.0 * c.z;
+  }
+  CHECK(y == doctest::Approx(106.86).epsilon(1e-3));
+  CHECK(x == doctest::Approx(y).epsilon(1e-3));
+  CHECK(z == doctest::Approx(y).epsilon(2e-3));
+}
+
+TEST_CASE("sRGB: the derived matrix maps D65 to (1, 1, 1) and matches IEC 61966-2-1") {
+  const Matrix3 m = xyz_to_linear_srgb_matrix();
+  const Vec3 white = xyz_to_linear_srgb(xyY_to_XYZ(0.3127, 0.3290, 1.0));
+  for (const double c : white) CHECK(c == doctest::Approx(1.0).epsilon(1e-13));
+  // The standard prints the matrix to 4 decimals.
+  const double iec[3][3] = {
+      {3.2406, -1.5372, -0.4986}, {-0.9689, 1.8758, 0.0415}, {0.0557, -0.2040, 1.0570}};
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t j = 0; j < 3; ++j) CHECK(std::fabs(m[i][j] - iec[i][j]) < 5e-4);
+  }
+}
+
+TEST_CASE(
+    "extraterrestrial solar table: in W/(m^2 sr nm) it gives the measured visible irradiance") {
+  // Ω_sun ∫ S₀ dλ over 380–750 nm vs the solar constant 1361 W/m² (Kopp & Lean 2011) times the
+  // fraction of a 5772 K black body (IAU 2015 nominal solar T_eff) in that band, computed here by
+  // Planck's law. The real sun deviates from a black body by a few percent in the visible: 6%.
+  const double omega = 2.0 * kPi * (1.0 - std::cos(kSunAngularRadius));
+  double band = 0.0;
+  for (std::size_t i = 0; i + 1 < kExtraterrestrialSolarRadiance.size(); ++i) {
+    band += 5.0 * (kExtraterrestrialSolarRadiance[i] + kExtraterrestrialSolarRadiance[i + 1]);
+  }
+  band *= kSolarRadianceUnit * omega;
+  const auto planck = [](double lambda_nm) {
+    const double l = lambda_nm * 1e-9, h = 6.62607015e-34, c = 2.99792458e8, k = 1.380649e-23;
+    return 1.0 / (l * l * l * l * l * (std::exp(h * c / (l * k * 5772.0)) - 1.0));
+  };
+  double visible = 0.0, total = 0.0;
+  for (double l = 1.0; l < 100000.0; l += 1.0) {
+    const double p = planck(l + 0.5);
+    total += p;
+    if (l + 0.5 >= 380.0 && l + 0.5 < 750.0) visible += p;
+  }
+  const double expected = 1361.0 * visible / total;
+  CAPTURE(band);
+  CAPTURE(expected);
+  CHECK(band == doctest::Approx(expected).epsilon(0.06));
+}
+
+TEST_CASE("Preetham sky: zenith value is Y_z, the Perez ratio is 1 there; published limits") {
+  for (const double t : {2.0, 3.0, 6.0, 10.0}) {
+    for (const double zs : {0.0, 30.0, 60.0, 85.0}) {
+      const Sky sky = make_sky(t, zs * kDeg, 0.4);
+      const Chromaticity c = sky_chromaticity(sky, {0.0, 1.0, 0.0});
+      CHECK(c.Y == doctest::Approx(zenith_luminance(t, zs * kDeg)).epsilon(1e-13));
+      CHECK(c.x == doctest::Approx(zenith_chromaticity_x(t, zs * kDeg)).epsilon(1e-13));
+      CHECK(c.y == doctest::Approx(zenith_chromaticity_y(t, zs * kDeg)).epsilon(1e-13));
+    }
+  }
+  // A clear sky (T = 2–3) is bluer than white: zenith x, y below the D65 point (0.3127, 0.3290)
+  // and the sky brighter near the sun than opposite it.
+  const Sky clear = make_sky(2.5, 30.0 * kDeg, 0.0);
+  CHECK(clear.zenith_x < 0.3127);
+  CHECK(clear.zenith_y < 0.3290);
+  CHECK(sky_chromaticity(clear, direction_from_angles(40.0 * kDeg, 0.0)).Y >
+        sky_chromaticity(clear, direction_from_angles(40.0 * kDeg, kPi)).Y);
+}
+
+TEST_CASE("sun: luminance at the zenith sun is the published ~1.6e9 cd/m^2; it reddens and dims") {
+  // "Sun at noon: 1.6 × 10⁹ cd/m²" (e.g. Rea, IESNA Lighting Handbook, 9th ed., table 1-2); a
+  // clear, moderately hazy atmosphere (T = 2–3) with the Preetham transmittances: within 20%.
+  const Sky noon = make_sky(2.0, 0.0, 0.0);
+  const Vec3 xyz = sun_radiance_xyz(noon);
+  CHECK(xyz[1] == doctest::Approx(1.6e9).epsilon(0.2));
+  double previous_y = xyz[1];
+  double previous_x = xyz[0] / (xyz[0] + xyz[1] + xyz[2]);
+  for (const double zs : {30.0, 60.0, 75.0, 85.0, 89.0}) {
+    const Vec3 v = sun_radiance_xyz(make_sky(2.0, zs * kDeg, 0.0));
+    const double chroma_x = v[0] / (v[0] + v[1] + v[2]);
+    CHECK(v[1] < previous_y);
+    CHECK(chroma_x > previous_x);
+    previous_y = v[1];
+    previous_x = chroma_x;
+  }
+  // Below the horizon: no sun.
+  CHECK(sun_radiance_xyz(make_sky(2.0, 95.0 * kDeg, 0.0))[1] == 0.0);
+  // The printed transmittance equals the physical one for m = 1 (Rayleigh at any λ).
+  CHECK(rayleigh_transmittance(500.0, 1.0, TransmittanceForm::printed) ==
+        doctest::Approx(rayleigh_transmittance(500.0, 1.0, TransmittanceForm::physical)));
+}
+
+TEST_CASE("sky irradiance: adaptive quadrature converges and agrees with a plain product rule") {
+  const Sky sky = make_sky(3.0, 40.0 * kDeg, 1.0);
+  const SkyIrradiance fine = sky_irradiance(sky, 1e-10);
+  const SkyIrradiance coarse = sky_irradiance(sky, 1e-6);
+  CHECK(fine.relative_error < 1e-9);
+  CHECK(coarse.xyz[1] == doctest::Approx(fine.xyz[1]).epsilon(1e-5));
+  // Independent: midpoint rule on a 400 × 800 (θ, φ) grid, error O(h²) ~ 1e−4 of E.
+  double e = 0.0;
+  const int nt = 400, np = 800;
+  for (int i = 0; i < nt; ++i) {
+    const double theta = (i + 0.5) * 0.5 * kPi / nt;
+    for (int j = 0; j < np; ++j) {
+      const double phi = (j + 0.5) * 2.0 * kPi / np;
+      e += sky_chromaticity(sky, direction_from_angles(theta, phi)).Y * std::cos(theta) *
+           std::sin(theta);
+    }
+  }
+  e *= (0.5 * kPi / nt) * (2.0 * kPi / np);
+  CHECK(e == doctest::Approx(fine.xyz[1]).epsilon(1e-3));
+}
+
+TEST_CASE("extremes: turbidity limits, sun at and below the horizon, grazing directions") {
+  for (const double t : {kMinTurbidity, 5.0, kMaxTurbidity}) {
+    for (const double zs : {0.0, 45.0, 89.9, 90.0, 120.0, 180.0}) {
+      const Sky sky = make_sky(t, zs * kDeg, 0.3);
+      for (const double z : {0.0, 30.0, 60.0, 89.0, 89.999, 90.0, 100.0}) {
+        for (const double a : {0.0, 0.3, 1.5, 3.0}) {
+          const Chromaticity c = sky_chromaticity(sky, direction_from_angles(z * kDeg, a));
+          CAPTURE(t);
+          CAPTURE(zs);
+          CAPTURE(z);
+          CHECK(std::isfinite(c.Y));
+          CHECK(c.Y >= 0.0);
+          CHECK(c.x > 0.0);
+          CHECK(c.y > 0.0);
+        }
+      }
+      const Vec3 sun = sun_radiance_xyz(sky);
+      for (const double v : sun) CHECK((std::isfinite(v) && v >= 0.0));
+    }
+  }
+  CHECK_THROWS_AS(make_sky(1.5, 0.0, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS(make_sky(11.0, 0.0, 0.0), std::invalid_argument);
+}
