@@ -116,4 +116,76 @@ QuadratureResult integrate(const std::function<double(double)>& f,
   return result;
 }
 
+QuadratureRule gauss_legendre(int n) {
+  if (n < 1) throw std::invalid_argument("gauss_legendre: order must be >= 1");
+  QuadratureRule r{std::vector<double>(static_cast<std::size_t>(n)),
+                   std::vector<double>(static_cast<std::size_t>(n))};
+  const double pi = 3.141592653589793;
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5));  // Tricomi's initial guess
+    double derivative = 1.0;
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      double p0 = 1.0;
+      double p1 = 0.0;
+      for (int j = 1; j <= n; ++j) {  // (j)P_j = (2j − 1)x P_{j−1} − (j − 1)P_{j−2}
+        const double p2 = p1;
+        p1 = p0;
+        p0 = ((2.0 * j - 1.0) * x * p1 - (j - 1.0) * p2) / j;
+      }
+      derivative = n * (x * p0 - p1) / (x * x - 1.0);
+      const double step = p0 / derivative;
+      x -= step;
+      if (std::fabs(step) <= 1e-16) break;
+    }
+    const auto a = static_cast<std::size_t>(i);
+    const auto b = static_cast<std::size_t>(n - 1 - i);
+    r.nodes[a] = -x;
+    r.nodes[b] = x;
+    r.weights[a] = r.weights[b] = 2.0 / ((1.0 - x * x) * derivative * derivative);
+  }
+  return r;
+}
+
+QuadratureRule gauss_hermite(int n) {
+  if (n < 1) throw std::invalid_argument("gauss_hermite: order must be >= 1");
+  QuadratureRule r{std::vector<double>(static_cast<std::size_t>(n)),
+                   std::vector<double>(static_cast<std::size_t>(n))};
+  const double pi_quarter = 0.7511255444649425;  // π^{−1/4}
+  double z = 0.0;
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    // Initial guesses for the largest roots first (asymptotic forms).
+    if (i == 0) {
+      z = std::sqrt(2.0 * n + 1.0) - 1.85575 * std::pow(2.0 * n + 1.0, -0.16667);
+    } else if (i == 1) {
+      z -= 1.14 * std::pow(n, 0.426) / z;
+    } else if (i == 2) {
+      z = 1.86 * z - 0.86 * r.nodes[0];
+    } else if (i == 3) {
+      z = 1.91 * z - 0.91 * r.nodes[1];
+    } else {
+      z = 2.0 * z - r.nodes[static_cast<std::size_t>(i - 2)];
+    }
+    double derivative = 1.0;
+    for (int iteration = 0; iteration < 200; ++iteration) {
+      double p1 = pi_quarter;
+      double p2 = 0.0;
+      for (int j = 0; j < n; ++j) {  // orthonormal Hermite recurrence
+        const double p3 = p2;
+        p2 = p1;
+        p1 = z * std::sqrt(2.0 / (j + 1.0)) * p2 - std::sqrt(j / (j + 1.0)) * p3;
+      }
+      derivative = std::sqrt(2.0 * n) * p2;
+      const double step = p1 / derivative;
+      z -= step;
+      if (std::fabs(step) <= 1e-15 * std::fmax(1.0, std::fabs(z))) break;
+    }
+    const auto a = static_cast<std::size_t>(i);
+    const auto b = static_cast<std::size_t>(n - 1 - i);
+    r.nodes[a] = z;
+    r.nodes[b] = -z;
+    r.weights[a] = r.weights[b] = 2.0 / (derivative * derivative);
+  }
+  return r;
+}
+
 }  // namespace oceanref

@@ -27,4 +27,16 @@ QuadratureResult integrate(const std::function<double(double)>& f,
                            const std::vector<double>& breakpoints,
                            const QuadratureTolerance& tolerance = {});
 
+// A fixed-order rule: nodes and weights.
+struct QuadratureRule {
+  std::vector<double> nodes;
+  std::vector<double> weights;
+};
+// Gauss–Legendre on [−1, 1]: ∫ f dx ≈ Σ w_i f(x_i), exact for degree ≤ 2n − 1 (Newton on the
+// Legendre recurrence).
+QuadratureRule gauss_legendre(int order);
+// Gauss–Hermite: ∫ e^{−t²} f(t) dt ≈ Σ w_i f(t_i), exact for degree ≤ 2n − 1 (Newton on the
+// orthonormal Hermite recurrence, Golub–Welsch weights 2/(H̃_n')²).
+QuadratureRule gauss_hermite(int order);
+
 }  // namespace oceanref

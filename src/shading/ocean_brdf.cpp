@@ -1,0 +1,175 @@
+#include "shading/ocean_brdf.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "spectrum/quadrature.h"
+
+namespace oceanref {
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+const double kSqrtPi = std::sqrt(kPi);
+
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3 normalized(const Vec3& v) {
+  const double l = std::sqrt(dot(v, v));
+  return {v[0] / l, v[1] / l, v[2] / l};
+}
+Vec3 combine(double a, const Vec3& u, double b, const Vec3& v, double c, const Vec3& w) {
+  return {a * u[0] + b * v[0] + c * w[0], a * u[1] + b * v[1] + c * w[1],
+          a * u[2] + b * v[2] + c * w[2]};
+}
+}  // namespace
+
+SurfaceFrame wind_frame(const Vec3& normal, double wind_angle) {
+  const Vec3 n = normalized(normal);
+  const Vec3 wind{std::cos(wind_angle), 0.0, std::sin(wind_angle)};
+  Vec3 tx = combine(1.0, wind, -dot(wind, n), n, 0.0, n);
+  if (dot(tx, tx) < 1e-20) tx = combine(1.0, Vec3{0.0, 0.0, 1.0}, -n[2], n, 0.0, n);
+  tx = normalized(tx);
+  return {n, tx, cross(n, tx)};
+}
+
+double slope_density(double zeta_x, double zeta_y, SlopeVariance s) {
+  return std::exp(-0.5 * (zeta_x * zeta_x / s.x + zeta_y * zeta_y / s.y)) /
+         (2.0 * kPi * std::sqrt(s.x * s.y));
+}
+
+double directional_slope_variance(const Vec3& d, const SurfaceFrame& f, SlopeVariance s) {
+  const double a = dot(d, f.tangent_x);
+  const double b = dot(d, f.tangent_y);
+  const double horizontal = a * a + b * b;
+  if (!(horizontal > 0.0)) return 0.5 * (s.x + s.y);  // along N: any azimuth; Λ = 0 there
+  return (s.x * a * a + s.y * b * b) / horizontal;
+}
+
+double rational_erfc(double x) {
+  return 2.0 * std::exp(-x * x) / (2.319 * x + std::sqrt(4.0 + 1.52 * x * x));
+}
+
+namespace {
+// (e^{−ν²} − ν√π erfc ν)/(2√π): Λ·ν, finite at ν = 0.
+double lambda_times_nu(double nu, ErfcForm form) {
+  const double e = form == ErfcForm::exact ? std::erfc(nu) : rational_erfc(nu);
+  return (std::exp(-nu * nu) - nu * kSqrtPi * e) / (2.0 * kSqrtPi);
+}
+}  // namespace
+
+double smith_lambda(double cos_theta, double sigma2, ErfcForm form) {
+  if (!(cos_theta < 1.0)) return 0.0;
+  if (!(cos_theta > 0.0)) return std::numeric_limits<double>::infinity();
+  const double nu = cos_theta / std::sqrt(2.0 * sigma2 * (1.0 - cos_theta * cos_theta));
+  return std::fmax(0.0, lambda_times_nu(nu, form) / nu);
+}
+
+double visible_projected_area(double cos_theta, double sigma2, ErfcForm form) {
+  const double c = std::fmin(std::fmax(cos_theta, 0.0), 1.0);
+  if (c == 1.0) return 1.0;
+  // cos θ·Λ = (cos θ/ν)·(Λν) with cos θ/ν = √(2σ²(1 − cos²θ)).
+  const double width = std::sqrt(2.0 * sigma2 * (1.0 - c * c));
+  return c + width * std::fmax(0.0, lambda_times_nu(c / width, form));
+}
+
+double fresnel_reflectance(double cos_i, FresnelForm form) {
+  const double c = std::fmin(std::fmax(cos_i, 0.0), 1.0);
+  if (form == FresnelForm::unity) return 1.0;
+  if (form == FresnelForm::schlick) {
+    const double m = 1.0 - c;
+    return 0.02 + 0.98 * m * m * m * m * m;
+  }
+  const double n = kWaterRefractiveIndex;
+  const double sin_t2 = (1.0 - c * c) / (n * n);
+  const double cos_t = std::sqrt(1.0 - sin_t2);
+  const double rs = (c - n * cos_t) / (c + n * cos_t);
+  const double rp = (n * c - cos_t) / (n * c + cos_t);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
+                     const BrdfOptions& options) {
+  BrdfTerms t{};
+  const double zl = dot(light, f.normal);
+  const double zv = dot(view, f.normal);
+  if (!(zl > 0.0) || !(zv > 0.0)) return t;
+  const Vec3 h = normalized(combine(1.0, light, 1.0, view, 0.0, view));
+  const double zh = dot(h, f.normal);
+  t.zeta_x = dot(h, f.tangent_x) / zh;
+  t.zeta_y = dot(h, f.tangent_y) / zh;
+  t.p = slope_density(t.zeta_x, t.zeta_y, s);
+  t.sigma2_view = directional_slope_variance(view, f, s);
+  t.sigma2_light = directional_slope_variance(light, f, s);
+  t.lambda_view = smith_lambda(zv, t.sigma2_view, options.erfc);
+  t.lambda_light = smith_lambda(zl, t.sigma2_light, options.erfc);
+  t.fresnel = fresnel_reflectance(dot(view, h), options.fresnel);
+  // zV(1 + Λ_V + Λ_L) written so that it stays finite as zV → 0.
+  const double denominator =
+      visible_projected_area(zv, t.sigma2_view, options.erfc) + zv * t.lambda_light;
+  const double zh2 = zh * zh;
+  t.brdf_cos = t.fresnel * t.p / (4.0 * zh2 * zh2 * denominator);
+  return t;
+}
+
+double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const SurfaceFrame& f,
+                     SlopeVariance s, int order, const BrdfOptions& options) {
+  const double solid_angle = 2.0 * kPi * (1.0 - std::cos(radius));
+  if (order <= 0) return ocean_brdf(sun, view, f, s, options).brdf_cos * solid_angle;
+  // Orthonormal basis around the sun direction.
+  const Vec3 u = normalized(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
+                                                    : cross(sun, Vec3{1.0, 0.0, 0.0}));
+  const Vec3 w = cross(sun, u);
+  const QuadratureRule r = gauss_legendre(order);
+  const int azimuths = 4 * order;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+    const double rho = 0.5 * radius * (r.nodes[i] + 1.0);  // [−1, 1] → [0, ρ]
+    double ring = 0.0;
+    for (int j = 0; j < azimuths; ++j) {  // periodic: the trapezoid rule is spectrally accurate
+      const double psi = 2.0 * kPi * (j + 0.5) / azimuths;
+      const Vec3 l = combine(std::cos(rho), sun, std::sin(rho) * std::cos(psi), u,
+                             std::sin(rho) * std::sin(psi), w);
+      ring += ocean_brdf(l, view, f, s, options).brdf_cos;
+    }
+    sum += 0.5 * radius * r.weights[i] * std::sin(rho) * ring * (2.0 * kPi / azimuths);
+  }
+  return sum;
+}
+
+double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, int order,
+                    const BrdfOptions& options) {
+  const QuadratureRule g = gauss_hermite(order);
+  const double vx = dot(view, f.tangent_x);
+  const double vy = dot(view, f.tangent_y);
+  const double vn = dot(view, f.normal);
+  double numerator = 0.0;
+  double visible = 0.0;
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const double zx = std::sqrt(2.0 * s.x) * g.nodes[i];
+    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
+      const double zy = std::sqrt(2.0 * s.y) * g.nodes[j];
+      // Facet normal m ∝ ñ = N − ζ_x T_x − ζ_y T_y; V·ñ its projected area towards V.
+      const double projected = vn - zx * vx - zy * vy;
+      if (!(projected > 0.0)) continue;
+      const double weight = g.weights[i] * g.weights[j] * projected;
+      const double cos_vm = projected / std::sqrt(1.0 + zx * zx + zy * zy);
+      numerator += weight * fresnel_reflectance(cos_vm, options.fresnel);
+      visible += weight;
+    }
+  }
+  return visible > 0.0 ? numerator / visible : fresnel_reflectance(0.0, options.fresnel);
+}
+
+double mean_fresnel_fit(const Vec3& view, const SurfaceFrame& f, SlopeVariance s) {
+  const double sigma_v = std::sqrt(directional_slope_variance(view, f, s));
+  const double cos_v = std::fmax(dot(view, f.normal), 0.0);
+  return std::pow(1.0 - cos_v, 5.0 * std::exp(-2.69 * sigma_v)) /
+         (1.0 + 22.7 * std::pow(sigma_v, 1.5));
+}
+
+}  // namespace oceanref

@@ -1,0 +1,92 @@
+// The ocean BRDF of Bruneton, Neyret, Holzschuch 2010 ("Real-time Realistic Ocean Lighting using
+// Seamless Transitions from Geometry to BRDF"), exact: an anisotropic Gaussian distribution of
+// facet slopes, Smith's masking with the exact erfc, the exact unpolarized Fresnel reflectance of
+// water, and the sun and sky integrated rather than looked up. The approximations real-time
+// shaders make (Schlick Fresnel, the rational erfc, the mean-Fresnel fit, the sky lookup in the
+// mirror direction) are options, and their errors are measured (reference/ACCURACY.md).
+//
+// Frame: the mean surface normal N and the wind-aligned tangents T_x (upwind), T_y (crosswind),
+// an orthonormal basis; slopes ζ = (ζ_x, ζ_y) = −(m·T_x, m·T_y)/(m·N) for a facet normal m... here
+// with the sign convention of the demo: ζ_x = h·T_x/h·N for the half vector h.
+#pragma once
+
+#include <array>
+
+#include "sky/color.h"
+
+namespace oceanref {
+
+struct SurfaceFrame {
+  Vec3 normal;     // N, unit
+  Vec3 tangent_x;  // T_x, unit, ⟂ N (upwind)
+  Vec3 tangent_y;  // T_y = N × T_x... any unit vector ⟂ N and T_x completing the basis
+};
+// The frame of a normal N with T_x the projection of the wind direction (cos A, 0, sin A) on
+// the plane ⟂ N (+Y up, wind angle A from +X towards +Z).
+SurfaceFrame wind_frame(const Vec3& normal, double wind_angle);
+
+struct SlopeVariance {
+  double x;  // σ_x² upwind
+  double y;  // σ_y² crosswind
+};
+
+// p(ζ) = exp(−½(ζ_x²/σ_x² + ζ_y²/σ_y²)) / (2π σ_x σ_y)  (Bruneton 2010 eq. 4).
+double slope_density(double zeta_x, double zeta_y, SlopeVariance s);
+// σ² seen along a direction d: σ_x² cos²φ + σ_y² sin²φ, φ the azimuth of d in the frame
+// (exact: cos²φ = (d·T_x)²/((d·T_x)² + (d·T_y)²)). The demo computes φ = atan2(…) and then
+// 1/(1 + φ²) as if φ were tan φ — a misprint recorded in FORMULAS.md.
+double directional_slope_variance(const Vec3& d, const SurfaceFrame& f, SlopeVariance s);
+
+enum class ErfcForm { exact, rational };  // std::erfc, or 2e^{−x²}/(2.319x + √(4 + 1.52x²))
+// erfc(x) for x ≥ 0 by the rational approximation of the demo (Bruneton's ocean.glsl).
+double rational_erfc(double x);
+// Smith's Λ for Gaussian slopes: Λ = (e^{−ν²} − ν√π erfc ν)/(2ν√π), ν = cos θ/√(2σ²(1 − cos²θ))
+// (Bruneton 2010 eq. 7, after Smith 1967). Λ → ∞ as cos θ → 0; Λ = 0 at cos θ = 1.
+double smith_lambda(double cos_theta, double sigma2, ErfcForm form = ErfcForm::exact);
+// cos θ · (1 + Λ(cos θ)): finite as cos θ → 0, where it tends to √(σ²/(2π)).
+double visible_projected_area(double cos_theta, double sigma2, ErfcForm form = ErfcForm::exact);
+
+// Exact dielectric, 0.02 + 0.98(1 − cos)^5 (Schlick with the demo's constants), or 1 (a perfect
+// mirror facet: for energy checks).
+enum class FresnelForm { exact, schlick, unity };
+inline constexpr double kWaterRefractiveIndex = 1.333;
+// Unpolarized Fresnel reflectance of an air–water interface (n = 1.333) for cos θ_i ∈ [0, 1]:
+// ½(r_s² + r_p²) with r_s = (cos i − n cos t)/(cos i + n cos t), r_p = (n cos i − cos t)/(n cos i
+// + cos t), sin t = sin i / n (Born & Wolf §1.5).
+double fresnel_reflectance(double cos_incidence, FresnelForm form = FresnelForm::exact);
+
+struct BrdfOptions {
+  FresnelForm fresnel = FresnelForm::exact;
+  ErfcForm erfc = ErfcForm::exact;
+};
+
+// All intermediates of the BRDF for one pair of directions (for probing and `oceanref brdf`).
+struct BrdfTerms {
+  double zeta_x, zeta_y;  // slope of the facet reflecting L into V
+  double p;               // slope density p(ζ)
+  double sigma2_view, sigma2_light;
+  double lambda_view, lambda_light;  // Λ_V, Λ_L
+  double fresnel;                    // F(V·h)
+  double brdf_cos;  // f(L, V)·cos θ_L = F p /(4 (h·N)⁴ (V·N)(1 + Λ_V + Λ_L))
+};
+// Bruneton 2010 eq. 8–9 (the demo's reflectedSunRadiance without its clamps): 0 when L or V is
+// below the mean surface.
+BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const SurfaceFrame& frame,
+                     SlopeVariance s, const BrdfOptions& options = {});
+
+// The sun reflected into V, integrated over the sun disk (angular radius ρ, uniform radiance
+// L_sun): ∫_disk f cos θ_L dω · L_sun, by Gauss–Legendre quadrature in the disk's polar
+// coordinates (order × 4·order points). With order 0 the sun is a point: f cos θ_L Ω_sun L_sun.
+double reflected_sun(const Vec3& sun, double sun_radius, const Vec3& view,
+                     const SurfaceFrame& frame, SlopeVariance s, int order,
+                     const BrdfOptions& options = {});
+
+// Mean Fresnel over the visible slopes: F̄ = ∫ F(V·m) ⟨V·ñ⟩₊ p dζ / (cos θ_V (1 + Λ_V)), ñ the
+// unnormalized facet normal, by Gauss–Hermite quadrature of the given order per axis.
+double mean_fresnel(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s, int order,
+                    const BrdfOptions& options = {});
+// The demo's fit: F̄ ≈ (1 − cos θ_V)^{5 exp(−2.69 σ_V)} / (1 + 22.7 σ_V^1.5), σ_V² along V, and
+// the demo then uses 0.02 + 0.98·F̄ (Bruneton's ocean demo, meanFresnel).
+double mean_fresnel_fit(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s);
+
+}  // namespace oceanref

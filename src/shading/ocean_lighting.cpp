@@ -1,0 +1,92 @@
+#include "shading/ocean_lighting.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "spectrum/quadrature.h"
+
+namespace oceanref {
+
+namespace {
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+}  // namespace
+
+Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, const Sky& sky,
+                   int order, const BrdfOptions& options) {
+  Vec3 sum{0.0, 0.0, 0.0};
+  const double vn = dot(view, f.normal);
+  if (!(vn > 0.0)) return sum;
+  const QuadratureRule g = gauss_hermite(order);
+  const double vx = dot(view, f.tangent_x);
+  const double vy = dot(view, f.tangent_y);
+  const double sigma2_view = directional_slope_variance(view, f, s);
+  const double view_area = visible_projected_area(vn, sigma2_view, options.erfc);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const double zx = std::sqrt(2.0 * s.x) * g.nodes[i];
+    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
+      const double zy = std::sqrt(2.0 * s.y) * g.nodes[j];
+      const double projected = vn - zx * vx - zy * vy;  // V·ñ
+      if (!(projected > 0.0)) continue;
+      const double length = std::sqrt(1.0 + zx * zx + zy * zy);
+      const double cos_vm = projected / length;
+      Vec3 m{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        m[k] = (f.normal[k] - zx * f.tangent_x[k] - zy * f.tangent_y[k]) / length;
+      }
+      Vec3 light{};
+      for (std::size_t k = 0; k < 3; ++k) light[k] = 2.0 * cos_vm * m[k] - view[k];
+      const double ln = dot(light, f.normal);
+      if (!(ln > 0.0)) continue;
+      const double lambda_light =
+          smith_lambda(ln, directional_slope_variance(light, f, s), options.erfc);
+      // G/(V·N) = 1/(zV(1 + Λ_V + Λ_L)), finite at grazing view.
+      const double weight = g.weights[i] * g.weights[j] / std::numbers::pi * projected /
+                            (view_area + vn * lambda_light) *
+                            fresnel_reflectance(cos_vm, options.fresnel);
+      const Vec3 radiance = sky_radiance_rgb(sky, light);
+      for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * radiance[k];
+    }
+  }
+  return sum;
+}
+
+Vec3 reflected_sky_mirror(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, const Sky& sky,
+                          int order, const BrdfOptions& options) {
+  const double vn = dot(view, f.normal);
+  if (!(vn > 0.0)) return {0.0, 0.0, 0.0};
+  Vec3 mirror{};
+  for (std::size_t k = 0; k < 3; ++k) mirror[k] = 2.0 * vn * f.normal[k] - view[k];
+  const double fresnel = mean_fresnel(view, f, s, order, options);
+  Vec3 l = sky_radiance_rgb(sky, mirror);
+  for (double& c : l) c *= fresnel;
+  return l;
+}
+
+Vec3 refracted_sea(double mean_fresnel_value, const Vec3& sea_colour, const Vec3& e_sky) {
+  Vec3 l{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    l[k] = (1.0 - mean_fresnel_value) * sea_colour[k] * e_sky[k] / std::numbers::pi;
+  }
+  return l;
+}
+
+double whitecap_coverage(double mean, double variance, double threshold) {
+  if (!(variance > 0.0)) return mean < threshold ? 1.0 : 0.0;
+  return 0.5 * std::erfc((mean - threshold) / std::sqrt(2.0 * variance));
+}
+
+Vec3 foam_radiance(double albedo, const Vec3& e_sun, const Vec3& e_sky) {
+  Vec3 l{};
+  for (std::size_t k = 0; k < 3; ++k) l[k] = albedo * (e_sun[k] + e_sky[k]) / std::numbers::pi;
+  return l;
+}
+
+Vec3 mix_whitecaps(const Vec3& ocean, const Vec3& foam, double coverage) {
+  Vec3 l{};
+  for (std::size_t k = 0; k < 3; ++k) l[k] = (1.0 - coverage) * ocean[k] + coverage * foam[k];
+  return l;
+}
+
+}  // namespace oceanref

@@ -1,0 +1,32 @@
+// The lighting terms of the ocean surface (Bruneton 2010 §4; Gamper §4.5): reflected sun,
+// reflected sky, refracted sea light and whitecaps (Dupuy & Bruneton 2012), each separately.
+// Radiance in cd/m² per linear sRGB (D65) channel.
+#pragma once
+
+#include "shading/ocean_brdf.h"
+#include "sky/preetham.h"
+
+namespace oceanref {
+
+// The sky reflected into V: ∫ f(L, V) L_sky(L) cos θ_L dω_L, written over facet slopes as
+// ∫ F(V·m) G(L, V) L_sky(L(m)) ⟨V·ñ⟩₊/(V·N) p(ζ) dζ with L(m) the mirror of V about m and
+// G = 1/(1 + Λ_V + Λ_L) (Bruneton 2010 eq. 8 integrated over the sky), by Gauss–Hermite
+// quadrature of the given order per axis. Directions below the horizon see no sky.
+Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s, const Sky& sky,
+                   int order, const BrdfOptions& options = {});
+// The shader's shortcut: F̄·L_sky at the mirror direction of V about N (no filtering).
+Vec3 reflected_sky_mirror(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s,
+                          const Sky& sky, int order, const BrdfOptions& options = {});
+
+// L_sea = (1 − F̄)·sea colour·E_sky/π  (Bruneton 2010 §4.3).
+Vec3 refracted_sea(double mean_fresnel, const Vec3& sea_colour, const Vec3& sky_irradiance);
+
+// Whitecap coverage W = P(det J < ε) for det J normal with the footprint's mean μ and variance σ²:
+// W = ½ erfc((μ − ε)/√(2σ²))  (Dupuy & Bruneton 2012, §3.3); W = [μ < ε] when σ² = 0.
+double whitecap_coverage(double jacobian_mean, double jacobian_variance, double threshold);
+// Foam radiance: a Lambertian white of albedo a lit by the sun and the sky,
+// a·(E_sun + E_sky)/π, mixed as (1 − W)·L_ocean + W·L_foam.
+Vec3 foam_radiance(double albedo, const Vec3& sun_irradiance, const Vec3& sky_irradiance);
+Vec3 mix_whitecaps(const Vec3& ocean, const Vec3& foam, double coverage);
+
+}  // namespace oceanref
