@@ -125,6 +125,23 @@ fi
 expect 2 'cannot write' fields "$tmp/scene.json" -o "$tmp/no/such/dir/f.exr"
 [ -z "$(ls -A "$tmp/ro")" ] || fail "a failed EXR write left files behind"
 
+# --- sky and brdf --------------------------------------------------------------------------
+expect 0 '^x,y,z,Y,chroma_x,chroma_y,R,G,B$' sky --sun-zenith-deg 30 --dir '0,1,0;1,0.1,0;0,-1,0'
+[ "$(wc -l <"$tmp/out")" -eq 4 ] || fail "sky --dir did not print one row per direction"
+grep -q '^0,-1,0,0,' "$tmp/out" || fail "sky below the horizon is not 0"
+expect 0 '^Y,chroma_x,chroma_y,R,G,B,angular_radius_rad$' sky --sun-zenith-deg 0 --sun
+expect 0 '^E_Y,E_X,E_Z,R,G,B,relative_error$' sky --sun-zenith-deg 45 --turbidity 4 --irradiance
+expect 0 '' sky --sun-zenith-deg 60 --size 32 -o "$tmp/sky.exr"
+[ -s "$tmp/sky.exr" ] || fail "sky --size -o wrote no EXR"
+expect 2 '--turbidity.*\[2, 10\]' sky --sun-zenith-deg 30 --turbidity 1 --sun
+expect 2 '--sun-zenith-deg.*\[0, 180\]' sky --sun-zenith-deg 200 --sun
+expect 2 '--dir.*x,y,z' sky --sun-zenith-deg 30 --dir 1,2
+expect 2 'give one of --dir' sky --sun-zenith-deg 30
+expect 0 '^quantity,value$' brdf --view -0.6,0.5,0 --sun 0.6,0.5,0 --sigma2 0.02,0.01
+grep -q '^F_mean,' "$tmp/out" || fail "brdf does not print F_mean"
+expect 2 '--sigma2.*\[1e-6, 1\]' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0,0.01
+expect 2 '--fresnel.*exact or schlick' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --fresnel x
+
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)
 "$bin" "${args[@]}" >"$tmp/a" && "$bin" "${args[@]}" >"$tmp/b"

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "shading/ocean_lighting.h"
+#include "shading/tone_mapping.h"
 #include "spectrum/quadrature.h"
 
 using namespace oceanref;
@@ -210,4 +211,31 @@ TEST_CASE("extremes: grazing view, sun at and below the horizon, sigma^2 from 1e
       }
     }
   }
+}
+
+TEST_CASE("tone mapping: Reinhard maps the log-average to a/(1+a) (L_white = inf) and white to 1") {
+  const std::vector<Vec3> image{
+      {100.0, 100.0, 100.0}, {1.0, 1.0, 1.0}, {10000.0, 10000.0, 10000.0}};
+  const double average = log_average_luminance(image, 0.0);
+  CHECK(average == doctest::Approx(100.0).epsilon(1e-12));  // geometric mean of 1, 100, 10⁴
+  const Vec3 mid = reinhard({100.0, 100.0, 100.0}, average, 0.18, 1e300);
+  CHECK(mid[1] == doctest::Approx(0.18 / 1.18).epsilon(1e-12));
+  // L = L_white maps to exactly 1 (Reinhard eq. 4).
+  const double white = 5.0;
+  const Vec3 top = reinhard({100.0 * white / 0.18, 100.0 * white / 0.18, 100.0 * white / 0.18},
+                            average, 0.18, white);
+  CHECK(top[0] == doctest::Approx(1.0).epsilon(1e-12));
+  // Temporal adaptation approaches the scene luminance monotonically, faster in bright light.
+  double la = 1.0;
+  for (int i = 0; i < 100; ++i) {
+    const double next = adapt_luminance(la, 1000.0, 1.0 / 30.0);
+    CHECK(next > la);
+    CHECK(next <= 1000.0);
+    la = next;
+  }
+  CHECK(la == doctest::Approx(1000.0).epsilon(1e-6));
+  CHECK(adaptation_time_constant(1e6) == doctest::Approx(0.1).epsilon(1e-6));
+  CHECK(adaptation_time_constant(0.0) == doctest::Approx(0.4));
+  CHECK(srgb_encode(1.0) == doctest::Approx(1.0));
+  CHECK(srgb_encode(0.001) == doctest::Approx(0.01292));
 }

@@ -8,11 +8,13 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <numeric>
 #include <ostream>
 #include <string>
 
 #include "cli/text.h"
+#include "shading/ocean_lighting.h"
 #include "waves/ocean.h"
 
 namespace oceanref::cli {
@@ -236,6 +238,83 @@ void bench_synthesis(std::ostream& out, const Flags& f) {
     }
   }
 }
+// Relative errors of the shader approximations against the exact forms.
+struct ErrorStats {
+  double max = 0.0;
+  double sum = 0.0;
+  int count = 0;
+  void add(double approximate, double exact) {
+    if (!(std::fabs(exact) > 0.0)) return;
+    const double e = std::fabs(approximate - exact) / std::fabs(exact);
+    max = std::max(max, e);
+    sum += e;
+    ++count;
+  }
+};
+
+void bench_lighting(std::ostream& out, int order) {
+  constexpr double deg = std::numbers::pi / 180.0;
+  ErrorStats schlick, erfc_rational, lambda_rational, fit, mirror, sun_shader;
+  for (double c = 0.0; c <= 1.0 + 1e-12; c += 0.001) {
+    schlick.add(fresnel_reflectance(c, FresnelForm::schlick), fresnel_reflectance(c));
+  }
+  for (double x = 0.001; x <= 10.0; x += 0.001) erfc_rational.add(rational_erfc(x), std::erfc(x));
+  const Sky sky = make_sky(2.5, 40.0 * deg, 0.0);
+  const Vec3 sun = sky.sun_direction;
+  const SurfaceFrame frame = wind_frame({0.0, 1.0, 0.0}, 0.0);
+  BrdfOptions shader;
+  shader.fresnel = FresnelForm::schlick;
+  shader.erfc = ErfcForm::rational;
+  int grid = 0;
+  for (const double s2 : {1e-3, 5e-3, 0.01, 0.02, 0.05, 0.1}) {
+    const SlopeVariance s{s2, 0.6 * s2};
+    for (double vz = 0.0; vz <= 85.0; vz += 5.0) {
+      for (double va = 0.0; va <= 180.0; va += 30.0) {
+        ++grid;
+        const Vec3 v = direction_from_angles(vz * deg, (180.0 + va) * deg);
+        // Compare the masking G₁ = 1/(1 + Λ): Λ itself → 0 where errors are irrelevant.
+        lambda_rational.add(1.0 / (1.0 + smith_lambda(v[1], s2, ErfcForm::rational)),
+                            1.0 / (1.0 + smith_lambda(v[1], s2)));
+        fit.add(mean_fresnel_fit(v, frame, s), mean_fresnel(v, frame, s, order));
+        mirror.add(reflected_sky_mirror(v, frame, s, sky, order)[1],
+                   reflected_sky(v, frame, s, sky, order)[1]);
+        const double exact = ocean_brdf(sun, v, frame, s).brdf_cos;
+        if (exact > 1e-6 * ocean_brdf(sun, {-sun[0], sun[1], -sun[2]}, frame, s).brdf_cos) {
+          sun_shader.add(ocean_brdf(sun, v, frame, s, shader).brdf_cos, exact);
+        }
+      }
+    }
+  }
+  out << "# oceanref bench lighting: view zenith 0-85 deg x 7 azimuths x sigma^2 in {1e-3 .. 0.1}"
+         " (crosswind 0.6x), sun at 40 deg, T = 2.5, Gauss-Hermite order "
+      << order << " (" << grid << " configurations)\n"
+      << "approximation,max_relative_error,mean_relative_error,samples\n";
+  const auto line = [&](const char* name, const ErrorStats& e) {
+    out << name << ',' << format_number(e.max) << ','
+        << format_number(e.count > 0 ? e.sum / e.count : 0.0) << ',' << e.count << '\n';
+  };
+  line("fresnel_schlick_vs_exact (cos 0..1)", schlick);
+  line("erfc_rational_vs_exact (x 0.001..10)", erfc_rational);
+  line("masking_1/(1+lambda)_rational_vs_exact", lambda_rational);
+  line("mean_fresnel_fit_vs_gauss_hermite", fit);
+  line("sky_mirror_lookup_vs_integral (Y)", mirror);
+  line("sun_brdf_schlick_rational_vs_exact", sun_shader);
+  // Printed vs physical transmittance (Preetham appendix A.5) over the sun's zenith angle.
+  out << "sun_zenith_deg,Y_physical,Y_printed,ratio\n";
+  for (const double z : {0.0, 30.0, 45.0, 60.0, 70.0, 80.0, 85.0, 88.0}) {
+    const Sky at = make_sky(2.5, z * deg, 0.0);
+    const double physical = sun_radiance_xyz(at, TransmittanceForm::physical)[1];
+    const double printed = sun_radiance_xyz(at, TransmittanceForm::printed)[1];
+    out << format_number(z) << ',' << format_number(physical) << ',' << format_number(printed)
+        << ',' << format_number(printed / physical) << '\n';
+  }
+  // Convergence of the sky integral with the Gauss–Hermite order (one grazing configuration).
+  out << "order,L_sky_Y (view zenith 80 deg, sigma^2 0.02/0.012)\n";
+  const Vec3 v = direction_from_angles(80.0 * deg, 200.0 * deg);
+  for (const int n : {4, 8, 16, 32, 64, 128}) {
+    out << n << ',' << format_number(reflected_sky(v, frame, {0.02, 0.012}, sky, n)[1]) << '\n';
+  }
+}
 }  // namespace
 
 std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
@@ -260,7 +339,20 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   synthesis->add_option("--frames", flags->frames, "timed frames (median reported)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  return [flags, synthesis](std::ostream& out) {
+  auto lighting_order = std::make_shared<int>(64);
+  CLI::App* lighting = bench->add_subcommand(
+      "lighting",
+      "Errors of the shader approximations (Schlick Fresnel, rational erfc, mean-Fresnel fit, "
+      "mirror sky lookup) against the exact forms, the printed-vs-physical sun transmittance, "
+      "and the convergence of the sky quadrature.");
+  lighting->add_option("--order", *lighting_order, "Gauss-Hermite order of the exact terms")
+      ->check(CLI::Range(4, 512))
+      ->capture_default_str();
+  return [flags, synthesis, lighting, lighting_order](std::ostream& out) {
+    if (lighting->parsed()) {
+      bench_lighting(out, *lighting_order);
+      return;
+    }
     const auto power_of_two = [](int n, int hi) { return n >= 4 && n <= hi && (n & (n - 1)) == 0; };
     if (!power_of_two(flags->resolution, 4096)) {
       throw UsageError("--resolution", "must be a power of two in [4, 4096], got " +

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cli/bench_command.h"
+#include "cli/brdf_command.h"
 #include "cli/fields_command.h"
 #include "cli/sky_command.h"
 #include "cli/spectrum_command.h"
@@ -17,6 +18,7 @@ int main(int argc, char** argv) {
   const auto run_spectrum = oceanref::cli::add_spectrum_command(app);
   const auto run_fields = oceanref::cli::add_fields_command(app);
   const auto run_sky = oceanref::cli::add_sky_command(app);
+  const auto run_brdf = oceanref::cli::add_brdf_command(app);
   const auto run_bench = oceanref::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
@@ -39,6 +41,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("spectrum")) run_spectrum(out);
     if (app.got_subcommand("fields")) run_fields(out);
     if (app.got_subcommand("sky")) run_sky(out);
+    if (app.got_subcommand("brdf")) run_brdf(out);
     if (app.got_subcommand("bench")) run_bench(out);
     std::cout << out.str() << std::flush;
     return std::cout ? 0 : 2;

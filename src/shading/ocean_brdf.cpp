@@ -168,8 +168,9 @@ double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, in
 double mean_fresnel_fit(const Vec3& view, const SurfaceFrame& f, SlopeVariance s) {
   const double sigma_v = std::sqrt(directional_slope_variance(view, f, s));
   const double cos_v = std::fmax(dot(view, f.normal), 0.0);
-  return std::pow(1.0 - cos_v, 5.0 * std::exp(-2.69 * sigma_v)) /
-         (1.0 + 22.7 * std::pow(sigma_v, 1.5));
+  const double fit = std::pow(1.0 - cos_v, 5.0 * std::exp(-2.69 * sigma_v)) /
+                     (1.0 + 22.7 * std::pow(sigma_v, 1.5));
+  return 0.02 + 0.98 * fit;
 }
 
 }  // namespace oceanref

@@ -85,8 +85,8 @@ double reflected_sun(const Vec3& sun, double sun_radius, const Vec3& view,
 // unnormalized facet normal, by Gauss–Hermite quadrature of the given order per axis.
 double mean_fresnel(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s, int order,
                     const BrdfOptions& options = {});
-// The demo's fit: F̄ ≈ (1 − cos θ_V)^{5 exp(−2.69 σ_V)} / (1 + 22.7 σ_V^1.5), σ_V² along V, and
-// the demo then uses 0.02 + 0.98·F̄ (Bruneton's ocean demo, meanFresnel).
+// The demo's fit, as the demo uses it: F̄ ≈ 0.02 + 0.98·(1 − cos θ_V)^{5 exp(−2.69 σ_V)} /
+// (1 + 22.7 σ_V^1.5), σ_V² the slope variance along V (Bruneton's ocean demo, meanFresnel).
 double mean_fresnel_fit(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s);
 
 }  // namespace oceanref
