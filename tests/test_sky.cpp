@@ -88,6 +88,32 @@ TEST_CASE("Preetham sky: zenith value is Y_z, the Perez ratio is 1 there; publis
         sky_chromaticity(clear, direction_from_angles(40.0 * kDeg, kPi)).Y);
 }
 
+TEST_CASE("Preetham: values of an independent public transcription of the coefficients") {
+  // Computed (double precision) with the coefficient matrices of the public implementation
+  // eiszapfen2000/tgda, Trunk/Matlab/preethamSky.m (mAY, mAx, mAy, mxz, myz, and Y_z in kcd/m² ×
+  // 1000): a second transcription of Preetham's appendix A.2, so a typo in either shows here.
+  struct Row {
+    double t, zenith_deg, Y, x, y;
+  };
+  for (const Row& r : {Row{2, 0, 15500.67214, 0.26674, 0.2772},
+                       Row{2, 30, 5886.743249, 0.2514214624, 0.2559238382},
+                       Row{3, 45, 7320.358317, 0.245678338, 0.2514764397},
+                       Row{6, 60, 9585.26981, 0.2654679472, 0.2817888139},
+                       Row{10, 80, 4760.601044, 0.3063558292, 0.3314752944}}) {
+    CAPTURE(r.t);
+    CAPTURE(r.zenith_deg);
+    CHECK(zenith_luminance(r.t, r.zenith_deg * kDeg) == doctest::Approx(r.Y).epsilon(1e-9));
+    CHECK(zenith_chromaticity_x(r.t, r.zenith_deg * kDeg) == doctest::Approx(r.x).epsilon(1e-9));
+    CHECK(zenith_chromaticity_y(r.t, r.zenith_deg * kDeg) == doctest::Approx(r.y).epsilon(1e-9));
+  }
+  // The full distribution at zenith 60°, 90° in azimuth from the sun (T = 3, θ_s = 45°).
+  const Sky sky = make_sky(3.0, 45.0 * kDeg, 0.0);
+  const Chromaticity c = sky_chromaticity(sky, direction_from_angles(60.0 * kDeg, 90.0 * kDeg));
+  CHECK(c.Y == doctest::Approx(7318.747262).epsilon(1e-9));
+  CHECK(c.x == doctest::Approx(0.2502703602).epsilon(1e-9));
+  CHECK(c.y == doctest::Approx(0.2620254989).epsilon(1e-9));
+}
+
 TEST_CASE("sun: luminance at the zenith sun is the published ~1.6e9 cd/m^2; it reddens and dims") {
   // "Sun at noon: 1.6 × 10⁹ cd/m²" (e.g. Rea, IESNA Lighting Handbook, 9th ed., table 1-2); a
   // clear, moderately hazy atmosphere (T = 2–3) with the Preetham transmittances: within 20%.
@@ -104,6 +130,17 @@ TEST_CASE("sun: luminance at the zenith sun is the published ~1.6e9 cd/m^2; it r
     previous_y = v[1];
     previous_x = chroma_x;
   }
+  // Near the horizon, independently: Beer–Lambert at the luminance-weighted 555 nm with the
+  // Rayleigh, Ångström and ozone optical depths per air mass (0.0963 + 0.0997 + 0.0333 for
+  // T = 2) and Kasten's m(80°) = 5.58 gives L(80°)/L(0°) ≈ 0.35; the spectral integral weights
+  // the bluer, more attenuated light too, so it is lower: accept 25%.
+  const double ratio = sun_radiance_xyz(make_sky(2.0, 80.0 * kDeg, 0.0))[1] / xyz[1];
+  const double m80 = relative_optical_mass(80.0 * kDeg);
+  const double m0 = relative_optical_mass(0.0);
+  const double tau =
+      0.008735 * std::pow(0.555, -4.08) + angstrom_beta(2.0) * std::pow(0.555, -1.3) + 0.095 * 0.35;
+  CHECK(m80 == doctest::Approx(5.58).epsilon(2e-3));
+  CHECK(ratio == doctest::Approx(std::exp(-tau * (m80 - m0))).epsilon(0.25));
   // Below the horizon: no sun.
   CHECK(sun_radiance_xyz(make_sky(2.0, 95.0 * kDeg, 0.0))[1] == 0.0);
   // The printed transmittance equals the physical one for m = 1 (Rayleigh at any λ).
