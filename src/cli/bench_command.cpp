@@ -254,7 +254,7 @@ struct ErrorStats {
 
 void bench_lighting(std::ostream& out, int order) {
   constexpr double deg = std::numbers::pi / 180.0;
-  ErrorStats schlick, erfc_rational, lambda_rational, fit, mirror, sun_shader;
+  ErrorStats schlick, erfc_rational, lambda_rational, fit, mirror, filtered, sun_shader;
   for (double c = 0.0; c <= 1.0 + 1e-12; c += 0.001) {
     schlick.add(fresnel_reflectance(c, FresnelForm::schlick), fresnel_reflectance(c));
   }
@@ -276,8 +276,9 @@ void bench_lighting(std::ostream& out, int order) {
         lambda_rational.add(1.0 / (1.0 + smith_lambda(v[1], s2, ErfcForm::rational)),
                             1.0 / (1.0 + smith_lambda(v[1], s2)));
         fit.add(mean_fresnel_fit(v, frame, s), mean_fresnel(v, frame, s, order));
-        mirror.add(reflected_sky_mirror(v, frame, s, sky, order)[1],
-                   reflected_sky(v, frame, s, sky, order)[1]);
+        const double sky_exact = reflected_sky(v, frame, s, sky, order)[1];
+        mirror.add(reflected_sky_mirror(v, frame, s, sky, order)[1], sky_exact);
+        filtered.add(reflected_sky_filtered(v, frame, s, sky, order)[1], sky_exact);
         const double exact = ocean_brdf(sun, v, frame, s).brdf_cos;
         if (exact > 1e-6 * ocean_brdf(sun, {-sun[0], sun[1], -sun[2]}, frame, s).brdf_cos) {
           sun_shader.add(ocean_brdf(sun, v, frame, s, shader).brdf_cos, exact);
@@ -297,7 +298,8 @@ void bench_lighting(std::ostream& out, int order) {
   line("erfc_rational_vs_exact (x 0.001..10)", erfc_rational);
   line("masking_1/(1+lambda)_rational_vs_exact", lambda_rational);
   line("mean_fresnel_fit_vs_gauss_hermite", fit);
-  line("sky_mirror_lookup_vs_integral (Y)", mirror);
+  line("sky_mirror_lookup_vs_integral (G)", mirror);
+  line("sky_filtered_lookup_vs_integral (G)", filtered);
   line("sun_brdf_schlick_rational_vs_exact", sun_shader);
   // Printed vs physical transmittance (Preetham appendix A.5) over the sun's zenith angle.
   out << "sun_zenith_deg,Y_physical,Y_printed,ratio\n";

@@ -122,6 +122,7 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
     rows(out, "L_sun_incident", l_sun);
     rows(out, "L_sun", {reflected * l_sun[0], reflected * l_sun[1], reflected * l_sun[2]});
     rows(out, "L_sky", reflected_sky(view, frame, s, sky, f->order, options));
+    rows(out, "L_sky_filtered", reflected_sky_filtered(view, frame, s, sky, f->order, options));
     rows(out, "L_sky_mirror", reflected_sky_mirror(view, frame, s, sky, f->order, options));
     rows(out, "E_sky", e_sky.rgb);
     rows(out, "L_sea", refracted_sea(fresnel_mean, {sea[0], sea[1], sea[2]}, e_sky.rgb));

@@ -64,6 +64,33 @@ Vec3 reflected_sky_mirror(const Vec3& view, const SurfaceFrame& f, SlopeVariance
   return l;
 }
 
+Vec3 reflected_sky_filtered(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
+                            const Sky& sky, int order, const BrdfOptions& options) {
+  Vec3 sum{0.0, 0.0, 0.0};
+  if (!(dot(view, f.normal) > 0.0)) return sum;
+  const QuadratureRule g = gauss_hermite(order);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const double zx = std::sqrt(2.0 * s.x) * g.nodes[i];
+    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
+      const double zy = std::sqrt(2.0 * s.y) * g.nodes[j];
+      const double length = std::sqrt(1.0 + zx * zx + zy * zy);
+      Vec3 m{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        m[k] = (f.normal[k] - zx * f.tangent_x[k] - zy * f.tangent_y[k]) / length;
+      }
+      const double vm = dot(view, m);
+      Vec3 light{};
+      for (std::size_t k = 0; k < 3; ++k) light[k] = 2.0 * vm * m[k] - view[k];
+      const Vec3 radiance = sky_radiance_rgb(sky, light);  // 0 below the horizon
+      const double weight = g.weights[i] * g.weights[j] / std::numbers::pi;
+      for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * radiance[k];
+    }
+  }
+  const double fresnel = mean_fresnel(view, f, s, order, options);
+  for (double& c : sum) c *= fresnel;
+  return sum;
+}
+
 Vec3 refracted_sea(double mean_fresnel_value, const Vec3& sea_colour, const Vec3& e_sky) {
   Vec3 l{};
   for (std::size_t k = 0; k < 3; ++k) {

@@ -14,7 +14,12 @@ namespace oceanref {
 // quadrature of the given order per axis. Directions below the horizon see no sky.
 Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s, const Sky& sky,
                    int order, const BrdfOptions& options = {});
-// The shader's shortcut: F̄·L_sky at the mirror direction of V about N (no filtering).
+// The demo's shortcut, a prefiltered sky texture read once: F̄ times the mean of L_sky over the
+// mirror directions of V about facets distributed by p(ζ) (no Fresnel, masking or visibility
+// weighting — what a filtered environment lookup holds), Gauss–Hermite of the given order.
+Vec3 reflected_sky_filtered(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s,
+                            const Sky& sky, int order, const BrdfOptions& options = {});
+// The crudest shortcut: F̄·L_sky at the mirror direction of V about N (no filtering).
 Vec3 reflected_sky_mirror(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s,
                           const Sky& sky, int order, const BrdfOptions& options = {});
 
