@@ -18,6 +18,10 @@ commands=(
   "spectrum --model unified --moments"
   "fields reference/scenes/waves_default.json --at 0,0 --time 3"
   "fields reference/scenes/waves_default.json --at 123.4,-56.7 --time 1000"
+  "sky --sun-zenith-deg 37 --sun-azimuth-deg 20 --turbidity 3.5 --dir 0,1,0;0.3,0.2,0.9;-1,0.05,0"
+  "sky --sun-zenith-deg 71 --sun"
+  "sky --sun-zenith-deg 50 --irradiance"
+  "brdf --view -0.6,0.5,0.1 --sun 0.6,0.5,0 --sigma2 0.02,0.01 --wind-deg 15"
 )
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -30,6 +34,8 @@ for c in "${commands[@]}"; do
     failures=$((failures + 1))
   fi
 done
+# The clang build passes the unit tests too.
+build-clang/tests/oceanref_tests >/dev/null || { echo "FAIL: unit tests of the clang build" >&2; failures=$((failures + 1)); }
 # The fields EXR: identical files imply identical decoded pixels.
 build/src/oceanref fields reference/scenes/waves_default.json -o "$tmp/gcc.exr"
 build-clang/src/oceanref fields reference/scenes/waves_default.json -o "$tmp/clang.exr"
