@@ -1,0 +1,110 @@
+#include "raster/rasterizer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace oceanref {
+
+namespace {
+struct Point {
+  double x, y;
+};
+
+// The edge function of the directed edge a → b at p, evaluated with the endpoints in a canonical
+// (lexicographic) order and negated for the other direction: the two triangles sharing an edge
+// get exactly opposite values.
+double edge_function(Point a, Point b, Point p) {
+  const bool swapped = (b.x < a.x) || (b.x == a.x && b.y < a.y);
+  const Point u = swapped ? b : a;
+  const Point v = swapped ? a : b;
+  const double e = (v.x - u.x) * (p.y - u.y) - (v.y - u.y) * (p.x - u.x);
+  return swapped ? -e : e;
+}
+
+// Top-left rule for a triangle wound so that inside is e > 0 (image y down): a sample exactly on
+// an edge belongs to the triangle if the edge is a "top" edge (horizontal, the interior below)
+// or a "left" edge (the interior to its right).
+bool owns_boundary(Point a, Point b) {
+  const double dx = b.x - a.x;
+  const double dy = b.y - a.y;
+  return (dy == 0.0 && dx < 0.0) || dy > 0.0;
+}
+}  // namespace
+
+void rasterize(const std::vector<ScreenVertex>& vertices,
+               const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
+               int first_row, int last_row, double near, std::vector<Fragment>& fragments) {
+  const int columns = grid.columns();
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const ScreenVertex& v0 = vertices[triangles[t][0]];
+    const ScreenVertex& v1 = vertices[triangles[t][1]];
+    const ScreenVertex& v2 = vertices[triangles[t][2]];
+    if (!(v0.z > near && v1.z > near && v2.z > near)) continue;
+    Point p[3] = {{v0.x, v0.y}, {v1.x, v1.y}, {v2.x, v2.y}};
+    double z[3] = {v0.z, v1.z, v2.z};
+    int order[3] = {0, 1, 2};
+    // Wind so that the interior has positive edge functions.
+    const double area = edge_function(p[0], p[1], p[2]);
+    if (area == 0.0 || !std::isfinite(area)) continue;
+    if (area < 0.0) std::swap(order[1], order[2]);
+    const Point a = p[order[0]], b = p[order[1]], c = p[order[2]];
+    const double za = z[order[0]], zb = z[order[1]], zc = z[order[2]];
+    const double signed_area = std::fabs(area);
+    const bool own_ab = owns_boundary(a, b), own_bc = owns_boundary(b, c),
+               own_ca = owns_boundary(c, a);
+    // Sample rows the triangle can touch.
+    const double y_lo = std::min({a.y, b.y, c.y});
+    const double y_hi = std::max({a.y, b.y, c.y});
+    const int s = grid.samples_per_axis;
+    int row_begin = static_cast<int>(std::ceil(y_lo * s - 0.5));
+    int row_end = static_cast<int>(std::floor(y_hi * s - 0.5)) + 1;
+    row_begin = std::max(row_begin, first_row);
+    row_end = std::min(row_end, last_row);
+    const Point edges[3][2] = {{a, b}, {b, c}, {c, a}};
+    for (int row = row_begin; row < row_end; ++row) {
+      const double sy = grid.sample_y(row);
+      // The span from the edges crossing this scanline (edge walking).
+      double x_lo = std::numeric_limits<double>::infinity();
+      double x_hi = -x_lo;
+      for (const auto& e : edges) {
+        const Point u = e[0], v = e[1];
+        if ((u.y <= sy && sy <= v.y) || (v.y <= sy && sy <= u.y)) {
+          const double x = u.y == v.y ? std::min(u.x, v.x) : u.x + (sy - u.y) * (v.x - u.x) / (v.y - u.y);
+          const double x2 = u.y == v.y ? std::max(u.x, v.x) : x;
+          x_lo = std::min(x_lo, x);
+          x_hi = std::max(x_hi, x2);
+        }
+      }
+      if (!(x_hi >= x_lo)) continue;
+      // One sample of slack on each side; the edge functions decide exactly.
+      const int col_begin = std::max(0, static_cast<int>(std::floor(x_lo * s - 0.5)));
+      const int col_end = std::min(columns, static_cast<int>(std::ceil(x_hi * s - 0.5)) + 1);
+      for (int col = col_begin; col < col_end; ++col) {
+        const Point q{grid.sample_x(col), sy};
+        const double e0 = edge_function(b, c, q);  // weight of a
+        const double e1 = edge_function(c, a, q);  // weight of b
+        const double e2 = edge_function(a, b, q);  // weight of c
+        if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) continue;
+        if ((e0 == 0.0 && !own_bc) || (e1 == 0.0 && !own_ca) || (e2 == 0.0 && !own_ab)) continue;
+        // Perspective-correct weights: screen barycentrics divided by depth, renormalized.
+        const double la = e0 / signed_area / za;
+        const double lb = e1 / signed_area / zb;
+        const double lc = e2 / signed_area / zc;
+        const double sum = la + lb + lc;
+        const double depth = 1.0 / sum;
+        Fragment& f = fragments[static_cast<std::size_t>(row) * static_cast<std::size_t>(columns) +
+                                static_cast<std::size_t>(col)];
+        if (f.triangle >= 0 && !(depth < f.depth)) continue;
+        f.depth = depth;
+        f.triangle = static_cast<std::int64_t>(t);
+        std::array<double, 3> w{};
+        w[static_cast<std::size_t>(order[0])] = la / sum;
+        w[static_cast<std::size_t>(order[1])] = lb / sum;
+        w[static_cast<std::size_t>(order[2])] = lc / sum;
+        f.weights = w;
+      }
+    }
+  }
+}
+
+}  // namespace oceanref

@@ -1,0 +1,53 @@
+// A deterministic scanline rasterizer with supersampling (tinyrenderer-sized).
+//
+// Samples: pixel (i, j) holds S×S samples at (i + (a + ½)/S, j + (b + ½)/S), a, b = 0…S−1, stored
+// row-major over the whole image: sample row r = j·S + b, column c = i·S + a.
+// Triangles are walked scanline by scanline over the sample rows they cover; each sample row's
+// span comes from the edges, and the samples at the span ends are decided by exact edge
+// functions evaluated in a canonical orientation (so two triangles sharing an edge compute the
+// same value with opposite signs) with the top-left rule for samples exactly on an edge:
+// watertight, no double hits. Depth: the smaller view depth wins; a tie keeps the earlier
+// triangle (fixed traversal order). Attributes are interpolated perspective-correctly.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace oceanref {
+
+// A vertex after projection: image position [pixels], view depth z > 0 [m].
+struct ScreenVertex {
+  double x, y, z;
+};
+
+struct SampleGrid {
+  int width = 0;             // pixels
+  int height = 0;
+  int samples_per_axis = 1;  // S
+  int columns() const { return width * samples_per_axis; }
+  int rows() const { return height * samples_per_axis; }
+  // The image position of a sample.
+  double sample_x(int column) const { return (column + 0.5) / samples_per_axis; }
+  double sample_y(int row) const { return (row + 0.5) / samples_per_axis; }
+};
+
+// What a sample saw: the nearest triangle and the perspective-correct barycentric weights of its
+// three vertices (w_0 + w_1 + w_2 = 1); triangle < 0 if none.
+struct Fragment {
+  double depth = 0.0;
+  std::int64_t triangle = -1;
+  std::array<double, 3> weights{};
+};
+
+// Rasterizes triangles (vertex indices into `vertices`, in order) into the fragments of sample
+// rows [first_row, last_row) — disjoint row bands can run on different threads with identical
+// results. Triangles with a vertex at z ≤ near are skipped (the projected grid keeps the sea in
+// front of the camera).
+void rasterize(const std::vector<ScreenVertex>& vertices,
+               const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
+               int first_row, int last_row, double near, std::vector<Fragment>& fragments);
+
+}  // namespace oceanref
