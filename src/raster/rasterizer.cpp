@@ -21,13 +21,14 @@ double edge_function(Point a, Point b, Point p) {
   return swapped ? -e : e;
 }
 
-// Top-left rule for a triangle wound so that inside is e > 0 (image y down): a sample exactly on
-// an edge belongs to the triangle if the edge is a "top" edge (horizontal, the interior below)
-// or a "left" edge (the interior to its right).
+// Top-left rule for a triangle wound so that inside is e > 0 (image y down): the interior of the
+// directed edge d = b − a lies along (−d_y, d_x). A sample exactly on an edge belongs to the
+// triangle if the edge is a "top" edge (horizontal, the interior below: d_x > 0) or a "left" edge
+// (the interior to its right: d_y < 0).
 bool owns_boundary(Point a, Point b) {
   const double dx = b.x - a.x;
   const double dy = b.y - a.y;
-  return (dy == 0.0 && dx < 0.0) || dy > 0.0;
+  return (dy == 0.0 && dx > 0.0) || dy < 0.0;
 }
 }  // namespace
 
