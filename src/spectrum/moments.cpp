@@ -91,4 +91,41 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
   return m;
 }
 
+WindSlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
+                                      const QuadratureTolerance& tolerance) {
+  WindSlopeVariance out;
+  if (!(k_hi > k_lo)) return out;
+  std::vector<double> b{k_lo};
+  for (const double k : wavenumber_breakpoints(s, k_hi)) {
+    if (k > k_lo && k < k_hi) b.push_back(k);
+  }
+  b.push_back(k_hi);
+  if (std::isinf(k_hi) && !(b[b.size() - 2] > 0.0)) b.insert(b.end() - 1, 1.0);
+  QuadratureTolerance inner = tolerance;
+  inner.relative = tolerance.relative * 0.1;
+  const double phi = s.wind_direction;
+  auto moment = [&](bool upwind) {
+    const QuadratureResult r = integrate(
+        [&](double k) {
+          const double psi = wavenumber_spectrum(s, k);
+          if (psi == 0.0) return 0.0;
+          return k * k * psi *
+                 integrate_over_direction(
+                     s, k,
+                     [&](double theta) {
+                       const double c = upwind ? std::cos(theta - phi) : std::sin(theta - phi);
+                       return c * c;
+                     },
+                     inner)
+                     .value;
+        },
+        b, tolerance);
+    require_converged(r, upwind ? "upwind slope variance" : "crosswind slope variance");
+    return r.value;
+  };
+  out.upwind = moment(true);
+  out.crosswind = moment(false);
+  return out;
+}
+
 }  // namespace oceanref

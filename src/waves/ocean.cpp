@@ -74,14 +74,73 @@ double sample_periodic(const std::vector<double>& grid, int n, double size, doub
          fv * ((1.0 - fu) * at(m0, n1) + fu * at(m1, n1));
 }
 
-std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z) {
+double sample_periodic_bicubic(const std::vector<double>& grid, int n, double size, double x,
+                               double z) {
+  const double spacing = size / n;
+  const auto cell = [&](double p) {
+    double u = std::fmod(p, size) / spacing;
+    if (u < 0.0) u += n;
+    const double node = std::nearbyint(u);
+    if (std::fabs(u - node) < 1e-9) u = node;
+    return u >= n ? u - n : u;
+  };
+  const double u = cell(x);
+  const double v = cell(z);
+  const int m0 = static_cast<int>(std::floor(u)) % n;
+  const int n0 = static_cast<int>(std::floor(v)) % n;
+  const double fu = u - std::floor(u);
+  const double fv = v - std::floor(v);
+  if (fu == 0.0 && fv == 0.0) return grid[grid_offset(m0, n0, n)];
+  // Catmull–Rom weights of the nodes −1, 0, 1, 2.
+  const auto weights = [](double t) {
+    return std::array<double, 4>{0.5 * ((-t + 2.0) * t - 1.0) * t, 0.5 * ((3.0 * t - 5.0) * t * t + 2.0),
+                                 0.5 * ((-3.0 * t + 4.0) * t + 1.0) * t, 0.5 * (t - 1.0) * t * t};
+  };
+  const std::array<double, 4> wu = weights(fu);
+  const std::array<double, 4> wv = weights(fv);
+  double sum = 0.0;
+  for (int j = 0; j < 4; ++j) {
+    const int row = ((n0 + j - 1) % n + n) % n;
+    double line = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const int column = ((m0 + i - 1) % n + n) % n;
+      line += wu[static_cast<std::size_t>(i)] * grid[grid_offset(column, row, n)];
+    }
+    sum += wv[static_cast<std::size_t>(j)] * line;
+  }
+  return sum;
+}
+
+std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z,
+                                                   Interpolation mode) {
   std::array<double, kFieldCount> raw{};
   for (int q = 0; q < kFieldCount; ++q) {
     const int n = is_low_resolution_field(Field(q)) ? f.low_resolution : f.high_resolution;
-    raw[static_cast<std::size_t>(q)] =
-        sample_periodic(f.values[static_cast<std::size_t>(q)], n, f.size, x, z);
+    const auto& grid = f.values[static_cast<std::size_t>(q)];
+    raw[static_cast<std::size_t>(q)] = mode == Interpolation::bicubic
+                                           ? sample_periodic_bicubic(grid, n, f.size, x, z)
+                                           : sample_periodic(grid, n, f.size, x, z);
   }
   return raw;
+}
+
+PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fields, double x,
+                       double z, double time, Interpolation mode) {
+  if (mode == Interpolation::direct) return combine_direct(ocean, x, z, time);
+  PointFields sum;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    add_cascade(sum, cascade_from_grids(fields[i], x, z, mode), ocean.cascades[i].choppiness);
+  }
+  finish_combination(sum);
+  return sum;
+}
+
+double height_bound(const Ocean& ocean) {
+  double bound = 0.0;
+  for (const CascadeSpectra& c : ocean.cascades) {
+    for (const Complex& h : c.low.h0) bound += std::abs(h);  // η and D live on the low grid
+  }
+  return bound;
 }
 
 PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFields>& fields,

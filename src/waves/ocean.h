@@ -51,9 +51,16 @@ Ocean realize_ocean(const WaveSettings& settings, int threads);
 // Raw fields of every cascade at time t.
 std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads);
 
+// How the cascade grids are read between nodes: bilinear, periodic Catmull–Rom bicubic, or the
+// exact direct summation of every component (slow). All are exact at the nodes.
+enum class Interpolation { bilinear, bicubic, direct };
+
 // A periodic grid sampled at a world point: exact at nodes, bilinear in between.
 double sample_periodic(const std::vector<double>& grid, int resolution, double size, double x,
                        double z);
+// The same with periodic Catmull–Rom bicubic interpolation (C¹, exact for quadratics).
+double sample_periodic_bicubic(const std::vector<double>& grid, int resolution, double size,
+                               double x, double z);
 
 // The combined fields at (x, z) from the FFT grids (bilinear between nodes) and by direct
 // summation over every component of every cascade.
@@ -61,7 +68,14 @@ PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFiel
                                double x, double z);
 PointFields combine_direct(const Ocean& ocean, double x, double z, double time);
 // The raw fields of one cascade at (x, z) from its FFT grids.
-std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z);
+std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z,
+                                                   Interpolation mode = Interpolation::bilinear);
+// The combined fields at (x, z) and time t with the chosen interpolation (direct: summation).
+PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fields, double x,
+                       double z, double time, Interpolation mode);
+// Σ|h0| over every cascade: a bound of |η| at any point and time (|h(k, t)| ≤ ½(|h0(k)| +
+// |h0(−k)|)), and of |D| per unit choppiness.
+double height_bound(const Ocean& ocean);
 
 // One cascade's Jacobian determinant (eq. 4.26 with its own u) on its high-resolution grid.
 std::vector<double> cascade_jacobian(const CascadeFields& f, double choppiness);

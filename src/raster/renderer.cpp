@@ -1,0 +1,221 @@
+#include "raster/renderer.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "spectrum/moments.h"
+#include "waves/fft.h"
+
+namespace oceanref {
+
+namespace {
+Vec3 to_vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+struct Geometry {
+  ProjectedGrid grid;
+  std::vector<glm::dvec3> world;
+  std::vector<ScreenVertex> screen;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+Geometry build_geometry(const RenderJob& job, const std::vector<CascadeFields>& fields,
+                        double bound) {
+  Geometry g;
+  ProjectedGridSettings settings = job.grid;
+  settings.displacement_bound = bound;
+  g.grid = project_grid(job.camera, settings);
+  if (!g.grid.visible) return g;
+  const std::size_t count = g.grid.base.size();
+  g.world.resize(count);
+  g.screen.resize(count);
+  parallel_for(g.grid.rows, job.threads, [&](int j) {
+    for (int i = 0; i < g.grid.columns; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
+                            static_cast<std::size_t>(i);
+      const glm::dvec2 x0 = g.grid.base[k];
+      const PointFields p = combine_at(*job.ocean, fields, x0.x, x0.y, job.time,
+                                       job.shading.interpolation);
+      // Displaced vertex (Gamper eq. 4.19–4.20, 4.24): x0 + Σ u_i D_i, height Σ η_i.
+      g.world[k] = {x0.x + p.raw[static_cast<std::size_t>(Field::displacement_x)], p.height,
+                    x0.y + p.raw[static_cast<std::size_t>(Field::displacement_z)]};
+      const glm::dvec3 s = project(job.camera, g.world[k]);
+      g.screen[k] = {s.x, s.y, s.z};
+    }
+  });
+  for (int j = 0; j + 1 < g.grid.rows; ++j) {
+    for (int i = 0; i + 1 < g.grid.columns; ++i) {
+      const auto k = static_cast<std::uint32_t>(j * g.grid.columns + i);
+      const auto c = static_cast<std::uint32_t>(g.grid.columns);
+      g.triangles.push_back({k, k + 1, k + c});
+      g.triangles.push_back({k + 1, k + c + 1, k + c});
+    }
+  }
+  return g;
+}
+
+struct Lighting {
+  Vec3 sun_direction;
+  Vec3 sun_radiance;    // L_sun, cd/m² per channel
+  Vec3 sky_irradiance;  // E_sky on a horizontal plane
+};
+
+SampleProbe shade_sample(const RenderJob& job, const std::vector<CascadeFields>& fields,
+                         const Geometry& g, const Fragment& f, const glm::dvec3& ray,
+                         const Lighting& light, const WindSlopeVariance& unresolved) {
+  SampleProbe p;
+  const ShadingSettings& sh = job.shading;
+  if (f.triangle < 0) {
+    // The sky (and the sun disk) behind the sea.
+    const Vec3 d = to_vec3(ray);
+    p.radiance = sky_radiance_rgb(job.sky, d);
+    if (dot3(d, light.sun_direction) >= std::cos(kSunAngularRadius)) {
+      for (std::size_t c = 0; c < 3; ++c) p.radiance[c] += light.sun_radiance[c];
+    }
+    return p;
+  }
+  p.hit = true;
+  p.depth = f.depth;
+  p.triangle = f.triangle;
+  const auto& t = g.triangles[static_cast<std::size_t>(f.triangle)];
+  for (std::size_t v = 0; v < 3; ++v) {
+    p.x0 += f.weights[v] * g.grid.base[t[v]];
+    p.position += f.weights[v] * g.world[t[v]];
+  }
+  p.fields = combine_at(*job.ocean, fields, p.x0.x, p.x0.y, job.time, sh.interpolation);
+  p.normal = surface_normal(p.fields.slope_x, p.fields.slope_z);
+  p.view = to_vec3(glm::normalize(job.camera.position - p.position));
+  const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
+  const SlopeVariance s{unresolved.upwind, unresolved.crosswind};
+  p.mean_fresnel = mean_fresnel(p.view, frame, s, sh.sky_order, sh.brdf);
+  if (sh.sun) {
+    const double reflectance = reflected_sun(light.sun_direction, kSunAngularRadius, p.view, frame,
+                                             s, sh.sun_order, sh.brdf);
+    for (std::size_t c = 0; c < 3; ++c) p.sun[c] = reflectance * light.sun_radiance[c];
+  }
+  if (sh.sky) p.sky = reflected_sky(p.view, frame, s, job.sky, sh.sky_order, sh.brdf);
+  if (sh.sea) p.sea = refracted_sea(p.mean_fresnel, sh.sea_colour, light.sky_irradiance);
+  for (std::size_t c = 0; c < 3; ++c) p.radiance[c] = p.sun[c] + p.sky[c] + p.sea[c];
+  if (sh.whitecaps) {
+    // Per-sample indicator; the S×S samples of a pixel give its footprint coverage.
+    p.whitecap_coverage = whitecap_coverage(p.fields.jacobian, 0.0, sh.whitecap_threshold);
+    const double cos_sun = std::fmax(0.0, dot3(p.normal, light.sun_direction));
+    const double solid_angle = 2.0 * std::numbers::pi * (1.0 - std::cos(kSunAngularRadius));
+    Vec3 e_sun{};
+    for (std::size_t c = 0; c < 3; ++c) e_sun[c] = light.sun_radiance[c] * solid_angle * cos_sun;
+    p.foam = foam_radiance(sh.foam_albedo, e_sun, light.sky_irradiance);
+    p.radiance = mix_whitecaps(p.radiance, p.foam, p.whitecap_coverage);
+  }
+  return p;
+}
+
+Lighting lighting_of(const Sky& sky) {
+  return {sky.sun_direction, sun_radiance_rgb(sky), sky_irradiance(sky).rgb};
+}
+
+std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const SampleGrid& grid) {
+  std::vector<Fragment> fragments(static_cast<std::size_t>(grid.columns()) *
+                                  static_cast<std::size_t>(grid.rows()));
+  if (!g.grid.visible) return fragments;
+  const int bands = std::max(1, job.threads);
+  parallel_for(bands, bands, [&](int band) {
+    const int first = grid.rows() * band / bands;
+    const int last = grid.rows() * (band + 1) / bands;
+    rasterize(g.screen, g.triangles, grid, first, last, job.grid.near, fragments);
+  });
+  return fragments;
+}
+}  // namespace
+
+WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettings& waves) {
+  double k_top = 0.0;
+  for (const CascadeSpectra& c : ocean.cascades) {
+    k_top = std::fmax(k_top, std::fmin(c.high.pattern.band.upper,
+                                       nyquist_wavenumber(c.high.pattern.size,
+                                                          c.high.pattern.resolution)));
+  }
+  const double k_floor = waves.minimum_wavelength > 0.0
+                             ? 2.0 * std::numbers::pi / waves.minimum_wavelength
+                             : kDefaultMaxWavenumber * 10.0;
+  return band_slope_variance(ocean.spectrum, k_top, k_floor);
+}
+
+RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved) {
+  const std::vector<CascadeFields> fields = synthesize_ocean(*job.ocean, job.time, job.threads);
+  RenderedImage image;
+  image.width = job.camera.width;
+  image.height = job.camera.height;
+  image.unresolved = unresolved;
+  image.displacement_bound = height_bound(*job.ocean);
+  const Geometry g = build_geometry(job, fields, image.displacement_bound);
+  const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
+  const std::vector<Fragment> fragments = raster_pass(job, g, grid);
+  const Lighting light = lighting_of(job.sky);
+  const auto pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  image.radiance.assign(pixels, Vec3{});
+  image.sun.assign(pixels, Vec3{});
+  image.sky.assign(pixels, Vec3{});
+  image.sea.assign(pixels, Vec3{});
+  image.foam.assign(pixels, Vec3{});
+  image.depth.assign(pixels, 0.0);
+  image.coverage.assign(pixels, 0.0);
+  const int s = job.samples_per_axis;
+  const double per_sample = 1.0 / (s * s);
+  parallel_for(image.height, job.threads, [&](int y) {
+    for (int x = 0; x < image.width; ++x) {
+      const std::size_t pixel = static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                                static_cast<std::size_t>(x);
+      int hits = 0;
+      for (int b = 0; b < s; ++b) {
+        for (int a = 0; a < s; ++a) {
+          const int row = y * s + b;
+          const int column = x * s + a;
+          const Fragment& f = fragments[static_cast<std::size_t>(row) *
+                                            static_cast<std::size_t>(grid.columns()) +
+                                        static_cast<std::size_t>(column)];
+          const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
+          const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
+          for (std::size_t c = 0; c < 3; ++c) {
+            image.radiance[pixel][c] += per_sample * p.radiance[c];
+            image.sun[pixel][c] += per_sample * p.sun[c];
+            image.sky[pixel][c] += per_sample * p.sky[c];
+            image.sea[pixel][c] += per_sample * p.sea[c];
+            image.foam[pixel][c] += per_sample * p.whitecap_coverage * p.foam[c];
+          }
+          if (p.hit) {
+            image.depth[pixel] += p.depth;
+            ++hits;
+          }
+        }
+      }
+      image.coverage[pixel] = hits * per_sample;
+      image.depth[pixel] = hits > 0 ? image.depth[pixel] / hits : 0.0;
+    }
+  });
+  return image;
+}
+
+std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
+                                     int pixel_x, int pixel_y) {
+  const std::vector<CascadeFields> fields = synthesize_ocean(*job.ocean, job.time, job.threads);
+  const Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
+  const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
+  const std::vector<Fragment> fragments = raster_pass(job, g, grid);
+  const Lighting light = lighting_of(job.sky);
+  std::vector<SampleProbe> out;
+  const int s = job.samples_per_axis;
+  for (int b = 0; b < s; ++b) {
+    for (int a = 0; a < s; ++a) {
+      const int row = pixel_y * s + b;
+      const int column = pixel_x * s + a;
+      const Fragment& f = fragments[static_cast<std::size_t>(row) *
+                                        static_cast<std::size_t>(grid.columns()) +
+                                    static_cast<std::size_t>(column)];
+      const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
+      out.push_back(shade_sample(job, fields, g, f, ray, light, unresolved));
+    }
+  }
+  return out;
+}
+
+}  // namespace oceanref

@@ -1,0 +1,81 @@
+// The reference image: wave fields (waves/) on the projected grid (projected_grid.h), rasterized
+// with supersampling (rasterizer.h) and shaded per sample with the Bruneton terms under the
+// Preetham sky and sun (shading/, sky/). Deterministic: every sample is computed alone, the
+// raster and shading passes split sample rows among threads, the resolve averages the S×S
+// samples of a pixel in a fixed order.
+#pragma once
+
+#include <vector>
+
+#include "raster/camera.h"
+#include "raster/projected_grid.h"
+#include "raster/rasterizer.h"
+#include "shading/ocean_lighting.h"
+#include "spectrum/moments.h"
+#include "waves/ocean.h"
+
+namespace oceanref {
+
+struct ShadingSettings {
+  bool sun = true;
+  bool sky = true;
+  bool sea = true;
+  bool whitecaps = false;
+  BrdfOptions brdf;
+  int sky_order = 4;   // Gauss–Hermite order per axis of the reflected sky and F̄
+  int sun_order = 2;   // Gauss–Legendre order over the sun disk (0: point sun)
+  Vec3 sea_colour{10.0 / 255.0 * 0.1, 40.0 / 255.0 * 0.1, 120.0 / 255.0 * 0.1};
+  double foam_albedo = 0.8;
+  double whitecap_threshold = 0.0;  // foam where det J < threshold
+  Interpolation interpolation = Interpolation::bicubic;
+};
+
+struct RenderJob {
+  const Ocean* ocean = nullptr;
+  double time = 0.0;
+  Camera camera;
+  ProjectedGridSettings grid;   // columns, rows, margin (the bound is filled in)
+  Sky sky;
+  ShadingSettings shading;
+  int samples_per_axis = 2;     // S: S×S stratified samples per pixel
+  int threads = 1;
+};
+
+// Per-pixel outputs (box-filtered over the samples); `coverage` is the share of samples that hit
+// the sea.
+struct RenderedImage {
+  int width = 0;
+  int height = 0;
+  std::vector<Vec3> radiance;   // cd/m², linear sRGB
+  std::vector<Vec3> sun, sky, sea, foam;  // the terms (AOVs), 0 where the sea is not seen
+  std::vector<double> depth;    // mean view depth of the sea samples [m], 0 if none
+  std::vector<double> coverage;
+  WindSlopeVariance unresolved;  // the BRDF roughness used
+  double displacement_bound = 0.0;
+};
+
+// The unresolved slope variance: the spectrum's slopes beyond the largest wavenumber the
+// cascades sample, up to λ_min (or 2π/λ_min of 1.73 cm when no floor is set).
+WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettings& waves);
+
+RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved);
+
+// Everything behind one sample, for `oceanref probe`.
+struct SampleProbe {
+  bool hit = false;
+  double depth = 0.0;
+  std::int64_t triangle = -1;
+  glm::dvec2 x0{0.0};
+  glm::dvec3 position{0.0};
+  PointFields fields;
+  Vec3 normal{};
+  Vec3 view{};
+  double mean_fresnel = 0.0;
+  Vec3 sun{}, sky{}, sea{}, foam{}, radiance{};
+  double whitecap_coverage = 0.0;
+};
+// The shading of one sample of the image (its fragment from a full raster pass).
+std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
+                                     int pixel_x, int pixel_y);
+
+}  // namespace oceanref
