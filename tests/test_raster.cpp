@@ -54,7 +54,8 @@ TEST_CASE("rasterizer: watertight fan and grid, every sample exactly once") {
   }
   std::vector<std::array<std::uint32_t, 3>> fan;
   for (int i = 0; i < n; ++i) {
-    fan.push_back({0u, static_cast<std::uint32_t>(1 + i), static_cast<std::uint32_t>(1 + (i + 1) % n)});
+    fan.push_back(
+        {0u, static_cast<std::uint32_t>(1 + i), static_cast<std::uint32_t>(1 + (i + 1) % n)});
   }
   const auto hits = coverage(v, fan, grid);
   int covered = 0;
@@ -66,7 +67,8 @@ TEST_CASE("rasterizer: watertight fan and grid, every sample exactly once") {
   for (int r = 0; r < grid.rows(); ++r) {
     for (int c = 0; c < grid.columns(); ++c) {
       const double dx = grid.sample_x(c) - 8.25, dy = grid.sample_y(r) - 8.25;
-      if (dx * dx + dy * dy < 5.7 * 5.7) CHECK(hits[static_cast<std::size_t>(r * grid.columns() + c)] == 1);
+      if (dx * dx + dy * dy < 5.7 * 5.7)
+        CHECK(hits[static_cast<std::size_t>(r * grid.columns() + c)] == 1);
     }
   }
   CHECK(covered > 0);
@@ -81,7 +83,8 @@ TEST_CASE("rasterizer: watertight fan and grid, every sample exactly once") {
     for (int i = 0; i + 1 < m; ++i) {
       const auto k = static_cast<std::uint32_t>(j * m + i);
       quads.push_back({k, k + 1, k + static_cast<std::uint32_t>(m)});
-      quads.push_back({k + 1, k + static_cast<std::uint32_t>(m) + 1, k + static_cast<std::uint32_t>(m)});
+      quads.push_back(
+          {k + 1, k + static_cast<std::uint32_t>(m) + 1, k + static_cast<std::uint32_t>(m)});
     }
   }
   for (const int h : coverage(g, quads, grid)) CHECK(h <= 1);
@@ -89,7 +92,8 @@ TEST_CASE("rasterizer: watertight fan and grid, every sample exactly once") {
 
 TEST_CASE("rasterizer: perspective-correct interpolation of a plane and nearest depth wins") {
   // A plane seen by a camera: the interpolated depth at each sample equals the ray-plane depth.
-  const Camera cam = make_camera({0, 2, 0}, {0, 0, 10}, {0, 1, 0}, 60.0 * std::numbers::pi / 180, 32, 24);
+  const Camera cam =
+      make_camera({0, 2, 0}, {0, 0, 10}, {0, 1, 0}, 60.0 * std::numbers::pi / 180, 32, 24);
   const glm::dvec3 corners[3] = {{-20, 0, 3}, {20, 0, 3}, {0, 0, 60}};
   std::vector<ScreenVertex> v;
   for (const auto& p : corners) {
@@ -136,9 +140,10 @@ TEST_CASE("projected grid: flat sea vertices are ray-plane hits; viewing cases")
   const Camera sky = make_camera({0, 10, 0}, {0, 40, 10}, {0, 1, 0}, 30 * deg, 320, 180);
   CHECK_FALSE(project_grid(sky, s).visible);
   // At the horizon, very close to the surface, and inside the displaceable volume: visible.
-  for (const Camera& c : {make_camera({0, 3, 0}, {0, 3, 100}, {0, 1, 0}, 50 * deg, 320, 180),
-                          make_camera({0, 0.2, 0}, {0, 0, 10}, {0, 1, 0}, 70 * deg, 320, 180),
-                          make_camera({0, -0.5, 0}, {0, -0.5, 10}, {0, 1, 0}, 60 * deg, 320, 180)}) {
+  for (const Camera& c :
+       {make_camera({0, 3, 0}, {0, 3, 100}, {0, 1, 0}, 50 * deg, 320, 180),
+        make_camera({0, 0.2, 0}, {0, 0, 10}, {0, 1, 0}, 70 * deg, 320, 180),
+        make_camera({0, -0.5, 0}, {0, -0.5, 10}, {0, 1, 0}, 60 * deg, 320, 180)}) {
     const ProjectedGrid p = project_grid(c, s);
     CHECK(p.visible);
     CHECK(p.projector_position.y >= s.displacement_bound + 1.0);

@@ -98,8 +98,20 @@ TEST_CASE("scene: every bad value is rejected with its JSON path") {
   s["waves"]["cascades"]["sizes"] = json::array({900, 500, 300, 200, 100, 50, 20, 10});
   CHECK(error_path(s) == "waves.resolution");  // memory cap
   s = minimal();
-  s["camera"] = json::object();
+  s["objects"] = json::array();
+  CHECK(error_path(s) == "objects");
+  s = minimal();
+  s["camera"] = json::parse(R"({"position": [0, 5, 0], "look_at": [0, 5, 0]})");
   CHECK(error_path(s) == "camera");
+  s = minimal();
+  s["render"] = json::parse(R"({"samples_per_pixel": 3})");
+  CHECK(error_path(s) == "render.samples_per_pixel");
+  s = minimal();
+  s["shading"] = json::parse(R"({"interpolation": "cubic"})");
+  CHECK(error_path(s) == "shading.interpolation");
+  s = minimal();
+  s["atmosphere"] = json::parse(R"({"turbidity": 12})");
+  CHECK(error_path(s) == "atmosphere.turbidity");
   s = minimal();
   s["seed"] = -1;
   CHECK(error_path(s) == "seed");

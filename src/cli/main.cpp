@@ -7,6 +7,7 @@
 #include "cli/bench_command.h"
 #include "cli/brdf_command.h"
 #include "cli/fields_command.h"
+#include "cli/render_command.h"
 #include "cli/sky_command.h"
 #include "cli/spectrum_command.h"
 #include "cli/text.h"
@@ -19,6 +20,8 @@ int main(int argc, char** argv) {
   const auto run_fields = oceanref::cli::add_fields_command(app);
   const auto run_sky = oceanref::cli::add_sky_command(app);
   const auto run_brdf = oceanref::cli::add_brdf_command(app);
+  const auto run_render = oceanref::cli::add_render_command(app);
+  const auto run_probe = oceanref::cli::add_probe_command(app);
   const auto run_bench = oceanref::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
@@ -42,6 +45,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("fields")) run_fields(out);
     if (app.got_subcommand("sky")) run_sky(out);
     if (app.got_subcommand("brdf")) run_brdf(out);
+    if (app.got_subcommand("render")) run_render(out);
+    if (app.got_subcommand("probe")) run_probe(out);
     if (app.got_subcommand("bench")) run_bench(out);
     std::cout << out.str() << std::flush;
     return std::cout ? 0 : 2;

@@ -8,9 +8,9 @@ namespace oceanref {
 
 struct Camera {
   glm::dvec3 position;
-  glm::dvec3 forward;  // unit, the viewing direction
-  glm::dvec3 right;    // unit
-  glm::dvec3 up;       // unit, right × … completing the basis
+  glm::dvec3 forward;   // unit, the viewing direction
+  glm::dvec3 right;     // unit
+  glm::dvec3 up;        // unit, right × … completing the basis
   double vertical_fov;  // [rad]
   int width;
   int height;

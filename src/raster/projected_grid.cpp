@@ -69,8 +69,8 @@ ProjectedGrid project_grid(const Camera& camera, const ProjectedGridSettings& s)
   if (!(glm::length(projector_up) > 1e-9)) projector_up = glm::dvec3(1.0, 0.0, 0.0);
   // Up for lookAt: world Y unless the projector looks straight down.
   const glm::dvec3 view_dir = glm::normalize(target - position);
-  const glm::dvec3 up = std::fabs(view_dir.y) > 0.999 ? glm::normalize(projector_up)
-                                                      : glm::dvec3(0.0, 1.0, 0.0);
+  const glm::dvec3 up =
+      std::fabs(view_dir.y) > 0.999 ? glm::normalize(projector_up) : glm::dvec3(0.0, 1.0, 0.0);
   const glm::dmat4 view = glm::lookAt(position, target, up);
   const double aspect = static_cast<double>(camera.width) / camera.height;
   const glm::dmat4 projection = glm::perspective(camera.vertical_fov, aspect, s.near, s.far);

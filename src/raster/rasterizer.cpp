@@ -70,7 +70,8 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
       for (const auto& e : edges) {
         const Point u = e[0], v = e[1];
         if ((u.y <= sy && sy <= v.y) || (v.y <= sy && sy <= u.y)) {
-          const double x = u.y == v.y ? std::min(u.x, v.x) : u.x + (sy - u.y) * (v.x - u.x) / (v.y - u.y);
+          const double x =
+              u.y == v.y ? std::min(u.x, v.x) : u.x + (sy - u.y) * (v.x - u.x) / (v.y - u.y);
           const double x2 = u.y == v.y ? std::max(u.x, v.x) : x;
           x_lo = std::min(x_lo, x);
           x_hi = std::max(x_hi, x2);

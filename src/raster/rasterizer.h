@@ -24,7 +24,7 @@ struct ScreenVertex {
 };
 
 struct SampleGrid {
-  int width = 0;             // pixels
+  int width = 0;  // pixels
   int height = 0;
   int samples_per_axis = 1;  // S
   int columns() const { return width * samples_per_axis; }

@@ -9,8 +9,12 @@
 namespace oceanref {
 
 namespace {
-Vec3 to_vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 to_vec3(const glm::dvec3& v) {
+  return {v.x, v.y, v.z};
+}
+double dot3(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 struct Geometry {
   ProjectedGrid grid;
@@ -34,8 +38,8 @@ Geometry build_geometry(const RenderJob& job, const std::vector<CascadeFields>& 
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
                             static_cast<std::size_t>(i);
       const glm::dvec2 x0 = g.grid.base[k];
-      const PointFields p = combine_at(*job.ocean, fields, x0.x, x0.y, job.time,
-                                       job.shading.interpolation);
+      const PointFields p =
+          combine_at(*job.ocean, fields, x0.x, x0.y, job.time, job.shading.interpolation);
       // Displaced vertex (Gamper eq. 4.19–4.20, 4.24): x0 + Σ u_i D_i, height Σ η_i.
       g.world[k] = {x0.x + p.raw[static_cast<std::size_t>(Field::displacement_x)], p.height,
                     x0.y + p.raw[static_cast<std::size_t>(Field::displacement_z)]};
@@ -85,6 +89,16 @@ SampleProbe shade_sample(const RenderJob& job, const std::vector<CascadeFields>&
   p.fields = combine_at(*job.ocean, fields, p.x0.x, p.x0.y, job.time, sh.interpolation);
   p.normal = surface_normal(p.fields.slope_x, p.fields.slope_z);
   p.view = to_vec3(glm::normalize(job.camera.position - p.position));
+  // The geometry faces the camera but the shading normal (from waves finer than the grid) may
+  // not: bend it towards the viewer until V·N = 0.001 (documented in README, "render").
+  constexpr double kMinimumCosView = 1e-3;
+  const double vn = dot3(p.view, p.normal);
+  if (vn < kMinimumCosView) {
+    Vec3 n{};
+    for (std::size_t c = 0; c < 3; ++c) n[c] = p.normal[c] + (kMinimumCosView - vn) * p.view[c];
+    const double length = std::sqrt(dot3(n, n));
+    for (std::size_t c = 0; c < 3; ++c) p.normal[c] = n[c] / length;
+  }
   const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   const SlopeVariance s{unresolved.upwind, unresolved.crosswind};
   p.mean_fresnel = mean_fresnel(p.view, frame, s, sh.sky_order, sh.brdf);
@@ -130,9 +144,9 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
 WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettings& waves) {
   double k_top = 0.0;
   for (const CascadeSpectra& c : ocean.cascades) {
-    k_top = std::fmax(k_top, std::fmin(c.high.pattern.band.upper,
-                                       nyquist_wavenumber(c.high.pattern.size,
-                                                          c.high.pattern.resolution)));
+    k_top = std::fmax(
+        k_top, std::fmin(c.high.pattern.band.upper,
+                         nyquist_wavenumber(c.high.pattern.size, c.high.pattern.resolution)));
   }
   const double k_floor = waves.minimum_wavelength > 0.0
                              ? 2.0 * std::numbers::pi / waves.minimum_wavelength
@@ -151,7 +165,8 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved) 
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const std::vector<Fragment> fragments = raster_pass(job, g, grid);
   const Lighting light = lighting_of(job.sky);
-  const auto pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  const auto pixels =
+      static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   image.radiance.assign(pixels, Vec3{});
   image.sun.assign(pixels, Vec3{});
   image.sky.assign(pixels, Vec3{});
@@ -163,17 +178,19 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved) 
   const double per_sample = 1.0 / (s * s);
   parallel_for(image.height, job.threads, [&](int y) {
     for (int x = 0; x < image.width; ++x) {
-      const std::size_t pixel = static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
-                                static_cast<std::size_t>(x);
+      const std::size_t pixel =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+          static_cast<std::size_t>(x);
       int hits = 0;
       for (int b = 0; b < s; ++b) {
         for (int a = 0; a < s; ++a) {
           const int row = y * s + b;
           const int column = x * s + a;
-          const Fragment& f = fragments[static_cast<std::size_t>(row) *
-                                            static_cast<std::size_t>(grid.columns()) +
-                                        static_cast<std::size_t>(column)];
-          const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
+          const Fragment& f =
+              fragments[static_cast<std::size_t>(row) * static_cast<std::size_t>(grid.columns()) +
+                        static_cast<std::size_t>(column)];
+          const glm::dvec3 ray =
+              ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
           const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
           for (std::size_t c = 0; c < 3; ++c) {
             image.radiance[pixel][c] += per_sample * p.radiance[c];
@@ -208,9 +225,9 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVarian
     for (int a = 0; a < s; ++a) {
       const int row = pixel_y * s + b;
       const int column = pixel_x * s + a;
-      const Fragment& f = fragments[static_cast<std::size_t>(row) *
-                                        static_cast<std::size_t>(grid.columns()) +
-                                    static_cast<std::size_t>(column)];
+      const Fragment& f =
+          fragments[static_cast<std::size_t>(row) * static_cast<std::size_t>(grid.columns()) +
+                    static_cast<std::size_t>(column)];
       const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
       out.push_back(shade_sample(job, fields, g, f, ray, light, unresolved));
     }

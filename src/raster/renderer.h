@@ -22,8 +22,8 @@ struct ShadingSettings {
   bool sea = true;
   bool whitecaps = false;
   BrdfOptions brdf;
-  int sky_order = 4;   // Gauss–Hermite order per axis of the reflected sky and F̄
-  int sun_order = 2;   // Gauss–Legendre order over the sun disk (0: point sun)
+  int sky_order = 4;  // Gauss–Hermite order per axis of the reflected sky and F̄
+  int sun_order = 2;  // Gauss–Legendre order over the sun disk (0: point sun)
   Vec3 sea_colour{10.0 / 255.0 * 0.1, 40.0 / 255.0 * 0.1, 120.0 / 255.0 * 0.1};
   double foam_albedo = 0.8;
   double whitecap_threshold = 0.0;  // foam where det J < threshold
@@ -34,10 +34,10 @@ struct RenderJob {
   const Ocean* ocean = nullptr;
   double time = 0.0;
   Camera camera;
-  ProjectedGridSettings grid;   // columns, rows, margin (the bound is filled in)
+  ProjectedGridSettings grid;  // columns, rows, margin (the bound is filled in)
   Sky sky;
   ShadingSettings shading;
-  int samples_per_axis = 2;     // S: S×S stratified samples per pixel
+  int samples_per_axis = 2;  // S: S×S stratified samples per pixel
   int threads = 1;
 };
 
@@ -46,9 +46,9 @@ struct RenderJob {
 struct RenderedImage {
   int width = 0;
   int height = 0;
-  std::vector<Vec3> radiance;   // cd/m², linear sRGB
+  std::vector<Vec3> radiance;             // cd/m², linear sRGB
   std::vector<Vec3> sun, sky, sea, foam;  // the terms (AOVs), 0 where the sea is not seen
-  std::vector<double> depth;    // mean view depth of the sea samples [m], 0 if none
+  std::vector<double> depth;              // mean view depth of the sea samples [m], 0 if none
   std::vector<double> coverage;
   WindSlopeVariance unresolved;  // the BRDF roughness used
   double displacement_bound = 0.0;

@@ -252,18 +252,126 @@ double wave_memory(const WaveSettings& w) {
   const double per_cell = 16 + 8 + 16 + 16 + 8 * 8;
   return static_cast<double>(w.sizes.size()) * (high + low) * per_cell;
 }
+glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, double limit) {
+  if (!s.has(key)) return fallback;
+  const json& v = s.at(key);
+  if (!v.is_array() || v.size() != 3) throw SceneError(s.where(key), "expected [x, y, z]");
+  glm::dvec3 out;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string p = s.where(key) + "[" + std::to_string(i) + "]";
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) {
+      throw SceneError(p, "expected a finite number");
+    }
+    const double x = v[i].get<double>();
+    if (std::fabs(x) > limit) {
+      throw SceneError(
+          p, "must be in [-" + shortest(limit) + ", " + shortest(limit) + "], got " + shortest(x));
+    }
+    out[static_cast<glm::length_t>(i)] = x;
+  }
+  return out;
+}
+
+void parse_rendering(const Section& top, Scene& scene) {
+  const json empty = json::object();
+  const Section camera(top.has("camera") ? top.at("camera") : empty, "camera",
+                       {"position", "look_at", "up", "vertical_fov_deg"});
+  CameraSettings& c = scene.camera;
+  c.position = vector3(camera, "position", c.position, 1e6);
+  c.look_at = vector3(camera, "look_at", c.look_at, 1e7);
+  c.up = vector3(camera, "up", c.up, 1e3);
+  c.vertical_fov_deg =
+      camera.number("vertical_fov_deg", c.vertical_fov_deg, 1.0, 170.0, " degrees");
+  const Section grid(top.has("grid") ? top.at("grid") : empty, "grid",
+                     {"columns", "rows", "margin"});
+  scene.grid.columns = grid.integer("columns", 512, 2, 8192);
+  scene.grid.rows = grid.integer("rows", 512, 2, 8192);
+  scene.grid.margin = grid.number("margin", 0.1, 0.0, 1.0);
+  const Section atmosphere(top.has("atmosphere") ? top.at("atmosphere") : empty, "atmosphere",
+                           {"sun_zenith_deg", "sun_azimuth_deg", "turbidity"});
+  AtmosphereSettings& a = scene.atmosphere;
+  a.sun_zenith_deg = atmosphere.number("sun_zenith_deg", a.sun_zenith_deg, 0.0, 180.0, " degrees");
+  a.sun_azimuth_deg =
+      atmosphere.number("sun_azimuth_deg", a.sun_azimuth_deg, -720.0, 720.0, " degrees");
+  a.turbidity = atmosphere.number("turbidity", a.turbidity, kMinTurbidity, kMaxTurbidity);
+  const Section shading(
+      top.has("shading") ? top.at("shading") : empty, "shading",
+      {"sun", "sky", "sea", "whitecaps", "fresnel", "erfc", "sky_order", "sun_order", "sea_colour",
+       "foam_albedo", "whitecap_threshold", "interpolation"});
+  ShadingSettings& h = scene.shading;
+  h.sun = shading.boolean("sun", true);
+  h.sky = shading.boolean("sky", true);
+  h.sea = shading.boolean("sea", true);
+  h.whitecaps = shading.boolean("whitecaps", false);
+  const std::string fresnel = shading.text("fresnel", "exact");
+  if (fresnel != "exact" && fresnel != "schlick") {
+    throw SceneError("shading.fresnel", "expected exact or schlick; got '" + fresnel + "'");
+  }
+  h.brdf.fresnel = fresnel == "exact" ? FresnelForm::exact : FresnelForm::schlick;
+  const std::string erfc = shading.text("erfc", "exact");
+  if (erfc != "exact" && erfc != "rational") {
+    throw SceneError("shading.erfc", "expected exact or rational; got '" + erfc + "'");
+  }
+  h.brdf.erfc = erfc == "exact" ? ErfcForm::exact : ErfcForm::rational;
+  h.sky_order = shading.integer("sky_order", h.sky_order, 1, 128);
+  h.sun_order = shading.integer("sun_order", h.sun_order, 0, 64);
+  const glm::dvec3 sea =
+      vector3(shading, "sea_colour", {h.sea_colour[0], h.sea_colour[1], h.sea_colour[2]}, 1.0);
+  if (sea.x < 0.0 || sea.y < 0.0 || sea.z < 0.0) {
+    throw SceneError("shading.sea_colour", "each component must be in [0, 1]");
+  }
+  h.sea_colour = {sea.x, sea.y, sea.z};
+  h.foam_albedo = shading.number("foam_albedo", h.foam_albedo, 0.0, 1.0);
+  h.whitecap_threshold = shading.number("whitecap_threshold", h.whitecap_threshold, -10.0, 10.0);
+  const std::string interpolation = shading.text("interpolation", "bicubic");
+  if (interpolation == "bilinear") {
+    h.interpolation = Interpolation::bilinear;
+  } else if (interpolation == "bicubic") {
+    h.interpolation = Interpolation::bicubic;
+  } else if (interpolation == "direct") {
+    h.interpolation = Interpolation::direct;
+  } else {
+    throw SceneError("shading.interpolation",
+                     "expected bilinear, bicubic or direct; got '" + interpolation + "'");
+  }
+  const Section render(top.has("render") ? top.at("render") : empty, "render",
+                       {"width", "height", "samples_per_pixel", "tone_key", "tone_white"});
+  ImageSettings& im = scene.image;
+  im.width = render.integer("width", im.width, 1, 16384);
+  im.height = render.integer("height", im.height, 1, 16384);
+  const int spp = render.integer("samples_per_pixel", 4, 1, 256);
+  const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
+  if (axis * axis != spp) {
+    throw SceneError(
+        "render.samples_per_pixel",
+        "must be a square number S*S (S x S stratified samples), got " + std::to_string(spp));
+  }
+  im.samples_per_axis = axis;
+  im.tone_key = render.number("tone_key", im.tone_key, 1e-3, 1.0);
+  im.tone_white = render.number("tone_white", im.tone_white, 0.0, 1e30);
+  const double sample_bytes = static_cast<double>(im.width) * im.height * spp * 48.0;
+  if (sample_bytes > kWaveMemoryCap) {
+    throw SceneError("render", "width x height x samples_per_pixel needs " +
+                                   shortest(std::round(sample_bytes / 1048576.0)) +
+                                   " MiB of samples, over the cap of 8192 MiB");
+  }
+  try {
+    (void)scene_camera(scene);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError("camera", e.what());
+  }
+}
 }  // namespace
 
 Scene parse_scene(const json& document) {
   const Section top(
       document, "",
       {"seed", "time", "waves", "camera", "grid", "atmosphere", "shading", "render", "objects"});
-  for (const char* later : {"camera", "grid", "atmosphere", "shading", "render", "objects"}) {
-    if (top.has(later)) {
-      throw SceneError(later,
-                       "this section is not supported yet by this version of oceanref "
-                       "(supported: seed, time, waves)");
-    }
+  if (top.has("objects")) {
+    throw SceneError("objects",
+                     "this section is not supported yet by this version of oceanref "
+                     "(supported: seed, time, waves, camera, grid, atmosphere, "
+                     "shading, render)");
   }
   Scene scene;
   if (top.has("seed")) {
@@ -334,7 +442,21 @@ Scene parse_scene(const json& document) {
   } catch (const SettingError& e) {
     throw SceneError(spectrum_path(e.key()), e.what());
   }
+  parse_rendering(top, scene);
+  scene.canonical = document.dump();
   return scene;
+}
+
+Camera scene_camera(const Scene& s) {
+  return make_camera(s.camera.position, s.camera.look_at, s.camera.up,
+                     s.camera.vertical_fov_deg * std::numbers::pi / 180.0, s.image.width,
+                     s.image.height);
+}
+
+Sky scene_sky(const Scene& s) {
+  const double deg = std::numbers::pi / 180.0;
+  return make_sky(s.atmosphere.turbidity, s.atmosphere.sun_zenith_deg * deg,
+                  s.atmosphere.sun_azimuth_deg * deg);
 }
 
 Scene load_scene(const std::string& path) {

@@ -2,7 +2,8 @@
 // non-finite numbers, out-of-range values and sizes over the memory cap are rejected with the
 // JSON path of the key. This version reads the sections `seed`, `time` and `waves`; the other
 // sections of the contract (camera, grid, atmosphere, shading, render, objects) are rejected as
-// not yet supported rather than silently ignored.
+// not yet supported rather than silently ignored. Sections: seed, time, waves, camera, grid,
+// atmosphere, shading, render (objects is not supported yet).
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "raster/renderer.h"
 #include "waves/ocean.h"
 
 namespace oceanref {
@@ -26,12 +28,43 @@ class SceneError : public std::runtime_error {
   std::string path_;
 };
 
+struct CameraSettings {
+  glm::dvec3 position{0.0, 4.0, 0.0};
+  glm::dvec3 look_at{0.0, 0.0, 200.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double vertical_fov_deg = 50.0;
+};
+
+struct AtmosphereSettings {
+  double sun_zenith_deg = 75.0;
+  double sun_azimuth_deg = 90.0;
+  double turbidity = 2.5;
+};
+
+struct ImageSettings {
+  int width = 640;
+  int height = 360;
+  int samples_per_axis = 2;  // samples_per_pixel = S²
+  double tone_key = 0.18;    // Reinhard key a for the PNG preview
+  double tone_white = 0.0;   // L_white for the preview; 0: the largest scaled luminance
+};
+
 struct Scene {
   std::uint64_t seed = 1;
   double time = 0.0;  // s
   WaveSettings waves;
   FoamSequence foam;
+  CameraSettings camera;
+  ProjectedGridSettings grid;
+  AtmosphereSettings atmosphere;
+  ShadingSettings shading;
+  ImageSettings image;
+  std::string canonical;  // the parsed document, dumped canonically (sorted keys): hashed
 };
+
+// The camera and sky of a scene (the validated settings resolved).
+Camera scene_camera(const Scene& scene);
+Sky scene_sky(const Scene& scene);
 
 // The memory cap for wave grids (bytes): scenes whose grids would need more are rejected.
 inline constexpr double kWaveMemoryCap = 8.0 * 1024 * 1024 * 1024;

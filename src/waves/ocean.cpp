@@ -93,7 +93,8 @@ double sample_periodic_bicubic(const std::vector<double>& grid, int n, double si
   if (fu == 0.0 && fv == 0.0) return grid[grid_offset(m0, n0, n)];
   // Catmull–Rom weights of the nodes −1, 0, 1, 2.
   const auto weights = [](double t) {
-    return std::array<double, 4>{0.5 * ((-t + 2.0) * t - 1.0) * t, 0.5 * ((3.0 * t - 5.0) * t * t + 2.0),
+    return std::array<double, 4>{0.5 * ((-t + 2.0) * t - 1.0) * t,
+                                 0.5 * ((3.0 * t - 5.0) * t * t + 2.0),
                                  0.5 * ((-3.0 * t + 4.0) * t + 1.0) * t, 0.5 * (t - 1.0) * t * t};
   };
   const std::array<double, 4> wu = weights(fu);

@@ -1,0 +1,247 @@
+#include "cli/render_command.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <thread>
+
+#include "cli/text.h"
+#include "io/exr.h"
+#include "io/png.h"
+#include "io/sha256.h"
+#include "scene/scene.h"
+#include "shading/tone_mapping.h"
+
+namespace oceanref::cli {
+
+namespace {
+constexpr const char* kVersion = "oceanref 0.1.0";
+
+void progress(const std::string& message) {
+  if (isatty(STDERR_FILENO)) std::cerr << "oceanref: " << message << '\n';
+}
+
+int resolve_threads(int requested) {
+  if (requested < 0 || requested > 1024) {
+    throw UsageError("--threads",
+                     "must be in [0, 1024] (0: all cores), got " + std::to_string(requested));
+  }
+  return requested > 0 ? requested
+                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+struct Prepared {
+  Scene scene;
+  Ocean ocean;
+  RenderJob job;
+  WindSlopeVariance unresolved;
+};
+
+std::unique_ptr<Prepared> prepare(const std::string& path, int threads, int spp) {
+  auto p = std::make_unique<Prepared>();
+  p->scene = load_scene(path);
+  if (spp != 0) {
+    const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
+    if (spp < 1 || spp > 256 || axis * axis != spp) {
+      throw UsageError("--spp", "must be a square number in [1, 256], got " + std::to_string(spp));
+    }
+    p->scene.image.samples_per_axis = axis;
+  }
+  progress("realizing the wave spectrum");
+  p->ocean = realize_ocean(p->scene.waves, threads);
+  p->unresolved = unresolved_slope_variance(p->ocean, p->scene.waves);
+  p->job.ocean = &p->ocean;
+  p->job.time = p->scene.time;
+  p->job.camera = scene_camera(p->scene);
+  p->job.grid = p->scene.grid;
+  p->job.sky = scene_sky(p->scene);
+  p->job.shading = p->scene.shading;
+  p->job.samples_per_axis = p->scene.image.samples_per_axis;
+  p->job.threads = threads;
+  return p;
+}
+
+// SHA-256 of the decoded pixel data: R, G, B as float32 little-endian, pixels row-major.
+std::string pixel_hash(const std::vector<ExrChannel>& rgb) {
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(rgb[0].values.size() * 12);
+  for (std::size_t i = 0; i < rgb[0].values.size(); ++i) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &rgb[c].values[i], sizeof bits);
+      for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * b)));
+    }
+  }
+  return sha256_hex(bytes);
+}
+
+std::vector<ExrChannel> channels_of(const std::string& prefix, const std::vector<Vec3>& v) {
+  std::vector<ExrChannel> out;
+  for (std::size_t c = 0; c < 3; ++c) {
+    ExrChannel ch{prefix + "RGB"[c], 1, std::vector<float>(v.size())};
+    for (std::size_t i = 0; i < v.size(); ++i) ch.values[i] = static_cast<float>(v[i][c]);
+    out.push_back(std::move(ch));
+  }
+  return out;
+}
+
+void write_preview(const std::string& path, const RenderedImage& image, const ImageSettings& s) {
+  const double average = log_average_luminance(image.radiance);
+  double white = s.tone_white;
+  if (!(white > 0.0)) {  // Reinhard's default: the largest scaled luminance
+    for (const Vec3& c : image.radiance) {
+      white = std::max(white, s.tone_key / average * relative_luminance(c));
+    }
+  }
+  std::vector<std::uint8_t> rgb;
+  rgb.reserve(image.radiance.size() * 3);
+  for (const Vec3& c : image.radiance) {
+    const Vec3 mapped = reinhard(c, average, s.tone_key, white);
+    for (const double v : mapped) {
+      rgb.push_back(static_cast<std::uint8_t>(std::lround(255.0 * srgb_encode(v))));
+    }
+  }
+  write_png(path, image.width, image.height, rgb);
+}
+}  // namespace
+
+std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
+  struct Flags {
+    std::string scene, output, png;
+    int threads = 0;
+    int spp = 0;
+    bool aov = false;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* cmd = app.add_subcommand(
+      "render",
+      "Render a scene to a linear EXR (cd/m^2 per linear sRGB channel), bit-identical "
+      "for any thread count; optional tone-mapped PNG preview.");
+  cmd->add_option("SCENE", f->scene, "scene file (JSON)")->required();
+  cmd->add_option("-o,--output", f->output, "OUT.exr")->required();
+  cmd->add_option("--png", f->png, "PREVIEW.png: Reinhard 2002 tone mapping, sRGB transfer");
+  cmd->add_option("--threads", f->threads, "worker threads (default: all cores)");
+  cmd->add_option("--spp", f->spp, "samples per pixel, a square number (overrides the scene)");
+  cmd->add_flag("--aov", f->aov,
+                "also write the layers depth, coverage, sun.RGB, sky.RGB, sea.RGB, foam.RGB");
+  return [f](std::ostream& out) {
+    const int threads = resolve_threads(f->threads);
+    const auto p = prepare(f->scene, threads, f->spp);
+    progress("rendering " + std::to_string(p->scene.image.width) + "x" +
+             std::to_string(p->scene.image.height) + " at " +
+             std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) + " spp");
+    const RenderedImage image = render(p->job, p->unresolved);
+    ExrImage exr;
+    exr.width = image.width;
+    exr.height = image.height;
+    exr.channels = channels_of("", image.radiance);
+    const std::string hash = pixel_hash(exr.channels);
+    if (f->aov) {
+      for (const auto& [name, layer] :
+           {std::pair{"sun.", &image.sun}, std::pair{"sky.", &image.sky},
+            std::pair{"sea.", &image.sea}, std::pair{"foam.", &image.foam}}) {
+        for (ExrChannel& c : channels_of(name, *layer)) exr.channels.push_back(std::move(c));
+      }
+      exr.channels.push_back(
+          {"depth", 1, std::vector<float>(image.depth.begin(), image.depth.end())});
+      exr.channels.push_back(
+          {"coverage", 1, std::vector<float>(image.coverage.begin(), image.coverage.end())});
+    }
+    exr.attributes["oceanref.version"] = kVersion;
+    exr.attributes["oceanref.scene_sha256"] = sha256_hex(p->scene.canonical);
+    exr.attributes["oceanref.seed"] = std::to_string(p->scene.seed);
+    exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
+    exr.attributes["oceanref.pixel_sha256"] = hash;
+    exr.attributes["oceanref.unresolved_slope_variance"] =
+        format_number(image.unresolved.upwind) + "," + format_number(image.unresolved.crosswind);
+    progress("writing " + f->output);
+    write_exr(f->output, exr);
+    if (!f->png.empty()) write_preview(f->png, image, p->scene.image);
+    out << "pixel_sha256," << hash << '\n';
+  };
+}
+
+std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
+  struct Flags {
+    std::string scene, pixel;
+    int threads = 0;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* cmd = app.add_subcommand(
+      "probe",
+      "Every intermediate value behind one pixel: per sample the triangle hit, x0, the "
+      "displaced position, fields, normal, F_mean, each lighting term; then the pixel.");
+  cmd->add_option("SCENE", f->scene, "scene file (JSON)")->required();
+  cmd->add_option("--pixel", f->pixel, "x,y (column, row from the top-left)")->required();
+  cmd->add_option("--threads", f->threads, "worker threads (default: all cores)");
+  return [f](std::ostream& out) {
+    const int threads = resolve_threads(f->threads);
+    const std::vector<double> xy = parse_number_list("--pixel", f->pixel);
+    const auto p = prepare(f->scene, threads, 0);
+    if (xy.size() != 2 || xy[0] < 0 || xy[1] < 0 || xy[0] >= p->scene.image.width ||
+        xy[1] >= p->scene.image.height || xy[0] != std::floor(xy[0]) ||
+        xy[1] != std::floor(xy[1])) {
+      throw UsageError("--pixel", "expected integer x,y inside the " +
+                                      std::to_string(p->scene.image.width) + "x" +
+                                      std::to_string(p->scene.image.height) + " image, got '" +
+                                      f->pixel + "'");
+    }
+    const std::vector<SampleProbe> samples =
+        probe_pixel(p->job, p->unresolved, static_cast<int>(xy[0]), static_cast<int>(xy[1]));
+    out << "sample,hit,depth,triangle,x0,z0,x,y,z,height,slope_x,slope_z,jacobian,normal_x,"
+           "normal_y,normal_z,view_x,view_y,view_z,sigma2_upwind,sigma2_crosswind,F_mean,"
+           "sun_R,sun_G,sun_B,sky_R,sky_G,sky_B,sea_R,sea_G,sea_B,foam_coverage,R,G,B\n";
+    Vec3 pixel{};
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const SampleProbe& s = samples[i];
+      const double values[] = {s.depth,
+                               static_cast<double>(s.triangle),
+                               s.x0.x,
+                               s.x0.y,
+                               s.position.x,
+                               s.position.y,
+                               s.position.z,
+                               s.fields.height,
+                               s.fields.slope_x,
+                               s.fields.slope_z,
+                               s.fields.jacobian,
+                               s.normal[0],
+                               s.normal[1],
+                               s.normal[2],
+                               s.view[0],
+                               s.view[1],
+                               s.view[2],
+                               p->unresolved.upwind,
+                               p->unresolved.crosswind,
+                               s.mean_fresnel,
+                               s.sun[0],
+                               s.sun[1],
+                               s.sun[2],
+                               s.sky[0],
+                               s.sky[1],
+                               s.sky[2],
+                               s.sea[0],
+                               s.sea[1],
+                               s.sea[2],
+                               s.whitecap_coverage,
+                               s.radiance[0],
+                               s.radiance[1],
+                               s.radiance[2]};
+      out << i << ',' << (s.hit ? 1 : 0);
+      for (const double v : values) out << ',' << format_number(v);
+      out << '\n';
+      for (std::size_t c = 0; c < 3; ++c)
+        pixel[c] += s.radiance[c] / static_cast<double>(samples.size());
+    }
+    out << "pixel," << format_number(pixel[0]) << ',' << format_number(pixel[1]) << ','
+        << format_number(pixel[2]) << '\n';
+  };
+}
+
+}  // namespace oceanref::cli

@@ -1,0 +1,14 @@
+// 8-bit RGB PNG output for previews (zlib deflate, written atomically like the EXR files).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace oceanref {
+
+// rgb: width × height × 3 bytes, rows top to bottom. Throws std::runtime_error naming the file.
+void write_png(const std::string& path, int width, int height,
+               const std::vector<std::uint8_t>& rgb);
+
+}  // namespace oceanref
