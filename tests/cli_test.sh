@@ -142,6 +142,33 @@ grep -q '^F_mean,' "$tmp/out" || fail "brdf does not print F_mean"
 expect 2 '--sigma2.*\[1e-6, 1\]' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0,0.01
 expect 2 '--fresnel.*exact or schlick' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --fresnel x
 
+# --- render and probe --------------------------------------------------------------------------
+cat >"$tmp/render.json" <<'JSON'
+{"seed": 2, "waves": {"cascades": {"sizes": [150, 40]}, "resolution": 32, "choppiness": -0.8},
+ "camera": {"position": [0, 5, 0], "look_at": [0, 1, 50]},
+ "grid": {"columns": 64, "rows": 64},
+ "shading": {"whitecaps": true, "sky_order": 2, "sun_order": 1},
+ "render": {"width": 40, "height": 24, "samples_per_pixel": 4}}
+JSON
+expect 0 '^pixel_sha256,[0-9a-f]{64}$' render "$tmp/render.json" -o "$tmp/r1.exr" --png "$tmp/r1.png" --threads 1
+hash1=$(cat "$tmp/out")
+[ -s "$tmp/r1.png" ] || fail "render --png wrote no PNG"
+head -c 8 "$tmp/r1.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || fail "render --png is not a PNG"
+for t in 2 3 8; do
+  "$bin" render "$tmp/render.json" -o "$tmp/r$t.exr" --threads $t >"$tmp/hash$t"
+  checks=$((checks + 1))
+  [ "$(cat "$tmp/hash$t")" = "$hash1" ] || fail "render pixel hash differs between 1 and $t threads"
+done
+expect 0 '^sample,hit,depth' probe "$tmp/render.json" --pixel 20,20
+[ "$(wc -l <"$tmp/out")" -eq 6 ] || fail "probe did not print 4 samples and the pixel"
+expect 2 '--pixel.*inside the 40x24 image' probe "$tmp/render.json" --pixel 40,3
+expect 2 '--spp.*square' render "$tmp/render.json" -o "$tmp/x.exr" --spp 3
+printf '{"waves": {}, "render": {"samples_per_pixel": 2}}' >"$tmp/bad.json"
+expect 2 'render.samples_per_pixel.*square' render "$tmp/bad.json" -o "$tmp/x.exr"
+printf '{"waves": {}, "camera": {"position": [0, 1, 0], "look_at": [0, 1, 0]}}' >"$tmp/bad.json"
+expect 2 'camera: camera: look_at equals position' render "$tmp/bad.json" -o "$tmp/x.exr"
+[ ! -e "$tmp/x.exr" ] || fail "a failed render left an output file"
+
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)
 "$bin" "${args[@]}" >"$tmp/a" && "$bin" "${args[@]}" >"$tmp/b"

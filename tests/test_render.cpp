@@ -13,7 +13,6 @@
 using namespace oceanref;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Scene small_scene(const std::string& camera) {
   const auto j = nlohmann::json::parse(R"({"seed": 4, "time": 2.0,

@@ -34,6 +34,13 @@ for c in "${commands[@]}"; do
     failures=$((failures + 1))
   fi
 done
+# The default scene's pixels (small size via --spp 1; the hash is printed by render).
+if ! build/src/oceanref render reference/scenes/default.json -o "$tmp/gcc_r.exr" --spp 1 >"$tmp/gcc_h" ||
+  ! build-clang/src/oceanref render reference/scenes/default.json -o "$tmp/clang_r.exr" --spp 1 >"$tmp/clang_h" ||
+  ! cmp -s "$tmp/gcc_h" "$tmp/clang_h"; then
+  echo "FAIL: gcc and clang builds render different pixels" >&2
+  failures=$((failures + 1))
+fi
 # The clang build passes the unit tests too.
 build-clang/tests/oceanref_tests >/dev/null || { echo "FAIL: unit tests of the clang build" >&2; failures=$((failures + 1)); }
 # The fields EXR: identical files imply identical decoded pixels.
@@ -43,5 +50,5 @@ if ! cmp -s "$tmp/gcc.exr" "$tmp/clang.exr"; then
   echo "FAIL: gcc and clang builds write different fields EXR files" >&2
   failures=$((failures + 1))
 fi
-echo "compare_compilers: $((${#commands[@]} + 1)) outputs, $failures differ between gcc and clang"
+echo "compare_compilers: $((${#commands[@]} + 2)) outputs, $failures differ between gcc and clang"
 [ "$failures" -eq 0 ]

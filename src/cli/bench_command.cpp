@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cli/text.h"
+#include "scene/scene.h"
 #include "shading/ocean_lighting.h"
 #include "waves/ocean.h"
 
@@ -317,6 +318,79 @@ void bench_lighting(std::ostream& out, int order) {
     out << n << ',' << format_number(reflected_sky(v, frame, {0.02, 0.012}, sky, n)[1]) << '\n';
   }
 }
+void bench_render(std::ostream& out, const std::string& path, int threads, int width, int height,
+                  int spp) {
+  Scene scene = load_scene(path);
+  scene.image.width = width;
+  scene.image.height = height;
+  scene.image.samples_per_axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
+  const auto t0 = std::chrono::steady_clock::now();
+  const Ocean ocean = realize_ocean(scene.waves, threads);
+  const WindSlopeVariance unresolved = unresolved_slope_variance(ocean, scene.waves);
+  const double prepare =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  RenderJob job;
+  job.ocean = &ocean;
+  job.time = scene.time;
+  job.camera = scene_camera(scene);
+  job.grid = scene.grid;
+  job.sky = scene_sky(scene);
+  job.shading = scene.shading;
+  job.samples_per_axis = scene.image.samples_per_axis;
+  job.threads = threads;
+  RenderTimes times;
+  const auto t1 = std::chrono::steady_clock::now();
+  const RenderedImage image = render(job, unresolved, &times);
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  double covered = 0.0;
+  for (const double c : image.coverage) covered += c;
+  const double samples = static_cast<double>(width) * height * job.samples_per_axis * job.samples_per_axis;
+  out << "# oceanref bench render: " << path << " at " << width << "x" << height << ", " << spp
+      << " spp, " << threads << " threads; sea covers "
+      << format_number(covered / static_cast<double>(image.coverage.size())) << " of the image\n"
+      << "stage,seconds\n"
+      << "spectrum_realization_and_unresolved_variance," << format_number(prepare) << '\n'
+      << "synthesis," << format_number(times.synthesis) << '\n'
+      << "grid," << format_number(times.grid) << '\n'
+      << "raster," << format_number(times.raster) << '\n'
+      << "shading," << format_number(times.shading) << '\n'
+      << "render_total," << format_number(total) << '\n'
+      << "samples_per_second," << format_number(samples / total) << '\n';
+}
+
+// Interpolation of the cascade grids vs direct summation at random points of the default scene.
+void bench_interpolation(std::ostream& out, const std::string& path, int threads) {
+  const Scene scene = load_scene(path);
+  const Ocean ocean = realize_ocean(scene.waves, threads);
+  const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, threads);
+  out << "interpolation,max_abs_height_error_m,max_abs_slope_error,max_abs_jacobian_error,"
+         "seconds_per_point\n";
+  const double g = 1.32471795724474602596;
+  const int points = 64;
+  std::vector<PointFields> exact;
+  for (int i = 1; i <= points; ++i) {
+    exact.push_back(combine_direct(ocean, 300.0 * std::fmod(i / g, 1.0),
+                                   300.0 * std::fmod(i / (g * g), 1.0), scene.time));
+  }
+  for (const auto& [name, mode] : {std::pair{"bilinear", Interpolation::bilinear},
+                                   std::pair{"bicubic", Interpolation::bicubic},
+                                   std::pair{"direct", Interpolation::direct}}) {
+    double eh = 0.0, es = 0.0, ej = 0.0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 1; i <= points; ++i) {
+      const PointFields p = combine_at(ocean, fields, 300.0 * std::fmod(i / g, 1.0),
+                                       300.0 * std::fmod(i / (g * g), 1.0), scene.time, mode);
+      const PointFields& d = exact[static_cast<std::size_t>(i - 1)];
+      eh = std::max(eh, std::fabs(p.height - d.height));
+      es = std::max(es, std::max(std::fabs(p.slope_x - d.slope_x), std::fabs(p.slope_z - d.slope_z)));
+      ej = std::max(ej, std::fabs(p.jacobian - d.jacobian));
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / points;
+    out << name << ',' << format_number(eh) << ',' << format_number(es) << ',' << format_number(ej)
+        << ',' << format_number(seconds) << '\n';
+  }
+}
 }  // namespace
 
 std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
@@ -350,9 +424,38 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   lighting->add_option("--order", *lighting_order, "Gauss-Hermite order of the exact terms")
       ->check(CLI::Range(4, 512))
       ->capture_default_str();
-  return [flags, synthesis, lighting, lighting_order](std::ostream& out) {
+  struct RenderFlags {
+    std::string scene = "reference/scenes/default.json";
+    int threads = 2, width = 1280, height = 720, spp = 4;
+  };
+  auto render_flags = std::make_shared<RenderFlags>();
+  CLI::App* render_cmd = bench->add_subcommand(
+      "render", "Time one render per stage (synthesis, grid, raster, shading) and samples/s; "
+                "the interpolation modes' error against direct summation.");
+  render_cmd->add_option("--scene", render_flags->scene, "scene file")->capture_default_str();
+  render_cmd->add_option("--threads", render_flags->threads, "worker threads")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  render_cmd->add_option("--width", render_flags->width, "image width")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  render_cmd->add_option("--height", render_flags->height, "image height")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  render_cmd->add_option("--spp", render_flags->spp, "samples per pixel (a square)")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  return [flags, synthesis, lighting, lighting_order, render_cmd, render_flags](std::ostream& out) {
     if (lighting->parsed()) {
       bench_lighting(out, *lighting_order);
+      return;
+    }
+    if (render_cmd->parsed()) {
+      const RenderFlags& r = *render_flags;
+      const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(r.spp))));
+      if (axis * axis != r.spp) throw UsageError("--spp", "must be a square number");
+      bench_render(out, r.scene, r.threads, r.width, r.height, r.spp);
+      bench_interpolation(out, r.scene, r.threads);
       return;
     }
     const auto power_of_two = [](int n, int hi) { return n >= 4 && n <= hi && (n & (n - 1)) == 0; };

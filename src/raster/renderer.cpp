@@ -1,5 +1,6 @@
 #include "raster/renderer.h"
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -154,16 +155,26 @@ WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettin
   return band_slope_variance(ocean.spectrum, k_top, k_floor);
 }
 
-RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved) {
+RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
+                     RenderTimes* times) {
+  auto clock = std::chrono::steady_clock::now();
+  const auto lap = [&](double RenderTimes::*stage) {
+    const auto now = std::chrono::steady_clock::now();
+    if (times != nullptr) times->*stage += std::chrono::duration<double>(now - clock).count();
+    clock = now;
+  };
   const std::vector<CascadeFields> fields = synthesize_ocean(*job.ocean, job.time, job.threads);
+  lap(&RenderTimes::synthesis);
   RenderedImage image;
   image.width = job.camera.width;
   image.height = job.camera.height;
   image.unresolved = unresolved;
   image.displacement_bound = height_bound(*job.ocean);
   const Geometry g = build_geometry(job, fields, image.displacement_bound);
+  lap(&RenderTimes::grid);
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const std::vector<Fragment> fragments = raster_pass(job, g, grid);
+  lap(&RenderTimes::raster);
   const Lighting light = lighting_of(job.sky);
   const auto pixels =
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
@@ -209,6 +220,7 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved) 
       image.depth[pixel] = hits > 0 ? image.depth[pixel] / hits : 0.0;
     }
   });
+  lap(&RenderTimes::shading);
   return image;
 }
 

@@ -58,7 +58,16 @@ struct RenderedImage {
 // cascades sample, up to λ_min (or 2π/λ_min of 1.73 cm when no floor is set).
 WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettings& waves);
 
-RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved);
+// Wall-clock seconds per stage (benchmarks).
+struct RenderTimes {
+  double synthesis = 0.0;  // wave fields of every cascade
+  double grid = 0.0;       // projected grid and vertex displacement
+  double raster = 0.0;
+  double shading = 0.0;    // per-sample shading and the resolve
+};
+
+RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
+                     RenderTimes* times = nullptr);
 
 // Everything behind one sample, for `oceanref probe`.
 struct SampleProbe {
