@@ -159,8 +159,8 @@ for t in 2 3 8; do
   checks=$((checks + 1))
   [ "$(cat "$tmp/hash$t")" = "$hash1" ] || fail "render pixel hash differs between 1 and $t threads"
 done
-expect 0 '^sample,hit,depth' probe "$tmp/render.json" --pixel 20,20
-[ "$(wc -l <"$tmp/out")" -eq 6 ] || fail "probe did not print 4 samples and the pixel"
+expect 0 '^sample,image_x,image_y,hit,depth' probe "$tmp/render.json" --pixel 20,20
+[ "$(wc -l <"$tmp/out")" -eq 7 ] || fail "probe did not print 4 samples and the pixel"
 expect 2 '--pixel.*inside the 40x24 image' probe "$tmp/render.json" --pixel 40,3
 expect 2 '--spp.*square' render "$tmp/render.json" -o "$tmp/x.exr" --spp 3
 printf '{"waves": {}, "render": {"samples_per_pixel": 2}}' >"$tmp/bad.json"

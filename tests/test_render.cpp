@@ -92,12 +92,12 @@ TEST_CASE("a flat mirror sea reflects the Preetham sky exactly; depth and horizo
 }
 
 TEST_CASE("every viewing case renders a valid image (no NaN, nothing negative)") {
-  for (const char* camera : {
-           R"({"position": [0, 40, 0], "look_at": [10, 0, 60]})",        // high, looking down
-           R"({"position": [0, 3, 0], "look_at": [0, 3, 100]})",          // at the horizon
-           R"({"position": [0, 0.3, 0], "look_at": [0, 0.1, 20]})",       // close to the surface
-           R"({"position": [0, 0.05, 0], "look_at": [0, 0.05, 30]})",     // inside the volume
-           R"({"position": [0, 5, 0], "look_at": [0, 40, 30]})"}) {       // looking up
+  for (const char* camera :
+       {R"({"position": [0, 40, 0], "look_at": [10, 0, 60]})",      // high, looking down
+        R"({"position": [0, 3, 0], "look_at": [0, 3, 100]})",       // at the horizon
+        R"({"position": [0, 0.3, 0], "look_at": [0, 0.1, 20]})",    // close to the surface
+        R"({"position": [0, 0.05, 0], "look_at": [0, 0.05, 30]})",  // inside the volume
+        R"({"position": [0, 5, 0], "look_at": [0, 40, 30]})"}) {    // looking up
     CAPTURE(camera);
     auto s = prepare(small_scene(camera), 2);
     const RenderedImage image = render(s->job, unresolved_slope_variance(s->ocean, s->scene.waves));

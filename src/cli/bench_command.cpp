@@ -344,7 +344,8 @@ void bench_render(std::ostream& out, const std::string& path, int threads, int w
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   double covered = 0.0;
   for (const double c : image.coverage) covered += c;
-  const double samples = static_cast<double>(width) * height * job.samples_per_axis * job.samples_per_axis;
+  const double samples =
+      static_cast<double>(width) * height * job.samples_per_axis * job.samples_per_axis;
   out << "# oceanref bench render: " << path << " at " << width << "x" << height << ", " << spp
       << " spp, " << threads << " threads; sea covers "
       << format_number(covered / static_cast<double>(image.coverage.size())) << " of the image\n"
@@ -372,9 +373,9 @@ void bench_interpolation(std::ostream& out, const std::string& path, int threads
     exact.push_back(combine_direct(ocean, 300.0 * std::fmod(i / g, 1.0),
                                    300.0 * std::fmod(i / (g * g), 1.0), scene.time));
   }
-  for (const auto& [name, mode] : {std::pair{"bilinear", Interpolation::bilinear},
-                                   std::pair{"bicubic", Interpolation::bicubic},
-                                   std::pair{"direct", Interpolation::direct}}) {
+  for (const auto& [name, mode] :
+       {std::pair{"bilinear", Interpolation::bilinear},
+        std::pair{"bicubic", Interpolation::bicubic}, std::pair{"direct", Interpolation::direct}}) {
     double eh = 0.0, es = 0.0, ej = 0.0;
     const auto t0 = std::chrono::steady_clock::now();
     for (int i = 1; i <= points; ++i) {
@@ -382,7 +383,8 @@ void bench_interpolation(std::ostream& out, const std::string& path, int threads
                                        300.0 * std::fmod(i / (g * g), 1.0), scene.time, mode);
       const PointFields& d = exact[static_cast<std::size_t>(i - 1)];
       eh = std::max(eh, std::fabs(p.height - d.height));
-      es = std::max(es, std::max(std::fabs(p.slope_x - d.slope_x), std::fabs(p.slope_z - d.slope_z)));
+      es = std::max(es,
+                    std::max(std::fabs(p.slope_x - d.slope_x), std::fabs(p.slope_z - d.slope_z)));
       ej = std::max(ej, std::fabs(p.jacobian - d.jacobian));
     }
     const double seconds =
@@ -430,8 +432,9 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   };
   auto render_flags = std::make_shared<RenderFlags>();
   CLI::App* render_cmd = bench->add_subcommand(
-      "render", "Time one render per stage (synthesis, grid, raster, shading) and samples/s; "
-                "the interpolation modes' error against direct summation.");
+      "render",
+      "Time one render per stage (synthesis, grid, raster, shading) and samples/s; "
+      "the interpolation modes' error against direct summation.");
   render_cmd->add_option("--scene", render_flags->scene, "scene file")->capture_default_str();
   render_cmd->add_option("--threads", render_flags->threads, "worker threads")
       ->check(CLI::Range(1, 1024))

@@ -128,8 +128,10 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   cmd->add_option("--png", f->png, "PREVIEW.png: Reinhard 2002 tone mapping, sRGB transfer");
   cmd->add_option("--threads", f->threads, "worker threads (default: all cores)");
   cmd->add_option("--spp", f->spp, "samples per pixel, a square number (overrides the scene)");
-  cmd->add_flag("--aov", f->aov,
-                "also write the layers depth, coverage, sun.RGB, sky.RGB, sea.RGB, foam.RGB");
+  cmd->add_flag(
+      "--aov", f->aov,
+      "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
+      "sun.RGB, sky.RGB, sea.RGB, foam.RGB");
   return [f](std::ostream& out) {
     const int threads = resolve_threads(f->threads);
     const auto p = prepare(f->scene, threads, f->spp);
@@ -194,7 +196,8 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
     }
     const std::vector<SampleProbe> samples =
         probe_pixel(p->job, p->unresolved, static_cast<int>(xy[0]), static_cast<int>(xy[1]));
-    out << "sample,hit,depth,triangle,x0,z0,x,y,z,height,slope_x,slope_z,jacobian,normal_x,"
+    out << "sample,image_x,image_y,hit,depth,triangle,x0,z0,x,y,z,height,slope_x,slope_z,jacobian,"
+           "normal_x,"
            "normal_y,normal_z,view_x,view_y,view_z,sigma2_upwind,sigma2_crosswind,F_mean,"
            "sun_R,sun_G,sun_B,sky_R,sky_G,sky_B,sea_R,sea_G,sea_B,foam_coverage,R,G,B\n";
     Vec3 pixel{};
@@ -233,13 +236,14 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
                                s.radiance[0],
                                s.radiance[1],
                                s.radiance[2]};
-      out << i << ',' << (s.hit ? 1 : 0);
+      out << i << ',' << format_number(s.image_x) << ',' << format_number(s.image_y) << ','
+          << (s.hit ? 1 : 0);
       for (const double v : values) out << ',' << format_number(v);
       out << '\n';
       for (std::size_t c = 0; c < 3; ++c)
         pixel[c] += s.radiance[c] / static_cast<double>(samples.size());
     }
-    out << "pixel," << format_number(pixel[0]) << ',' << format_number(pixel[1]) << ','
+    out << "pixel,R,G,B\npixel," << format_number(pixel[0]) << ',' << format_number(pixel[1]) << ','
         << format_number(pixel[2]) << '\n';
   };
 }

@@ -184,6 +184,8 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   image.sea.assign(pixels, Vec3{});
   image.foam.assign(pixels, Vec3{});
   image.depth.assign(pixels, 0.0);
+  image.normal.assign(pixels, Vec3{});
+  image.x0.assign(pixels, Vec3{});
   image.coverage.assign(pixels, 0.0);
   const int s = job.samples_per_axis;
   const double per_sample = 1.0 / (s * s);
@@ -212,12 +214,21 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
           }
           if (p.hit) {
             image.depth[pixel] += p.depth;
+            for (std::size_t c = 0; c < 3; ++c) image.normal[pixel][c] += p.normal[c];
+            image.x0[pixel][0] += p.x0.x;
+            image.x0[pixel][2] += p.x0.y;
             ++hits;
           }
         }
       }
       image.coverage[pixel] = hits * per_sample;
-      image.depth[pixel] = hits > 0 ? image.depth[pixel] / hits : 0.0;
+      if (hits > 0) {
+        image.depth[pixel] /= hits;
+        for (std::size_t c = 0; c < 3; ++c) {
+          image.normal[pixel][c] /= hits;
+          image.x0[pixel][c] /= hits;
+        }
+      }
     }
   });
   lap(&RenderTimes::shading);
@@ -241,7 +252,10 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVarian
           fragments[static_cast<std::size_t>(row) * static_cast<std::size_t>(grid.columns()) +
                     static_cast<std::size_t>(column)];
       const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-      out.push_back(shade_sample(job, fields, g, f, ray, light, unresolved));
+      SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
+      p.image_x = grid.sample_x(column);
+      p.image_y = grid.sample_y(row);
+      out.push_back(p);
     }
   }
   return out;

@@ -49,6 +49,8 @@ struct RenderedImage {
   std::vector<Vec3> radiance;             // cd/m², linear sRGB
   std::vector<Vec3> sun, sky, sea, foam;  // the terms (AOVs), 0 where the sea is not seen
   std::vector<double> depth;              // mean view depth of the sea samples [m], 0 if none
+  std::vector<Vec3> normal;               // mean shading normal of the sea samples, 0 if none
+  std::vector<Vec3> x0;  // mean undisplaced position (x0, 0, z0) of the sea samples
   std::vector<double> coverage;
   WindSlopeVariance unresolved;  // the BRDF roughness used
   double displacement_bound = 0.0;
@@ -63,7 +65,7 @@ struct RenderTimes {
   double synthesis = 0.0;  // wave fields of every cascade
   double grid = 0.0;       // projected grid and vertex displacement
   double raster = 0.0;
-  double shading = 0.0;    // per-sample shading and the resolve
+  double shading = 0.0;  // per-sample shading and the resolve
 };
 
 RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
@@ -71,6 +73,7 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
 
 // Everything behind one sample, for `oceanref probe`.
 struct SampleProbe {
+  double image_x = 0.0, image_y = 0.0;  // the sample position [pixels]
   bool hit = false;
   double depth = 0.0;
   std::int64_t triangle = -1;
