@@ -138,6 +138,16 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     progress("rendering " + std::to_string(p->scene.image.width) + "x" +
              std::to_string(p->scene.image.height) + " at " +
              std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) + " spp");
+    if (isatty(STDERR_FILENO)) {
+      p->job.progress = [](double share) {
+        const int width = 40;
+        const int filled = static_cast<int>(share * width);
+        std::cerr << "\r  [" << std::string(static_cast<std::size_t>(filled), '#')
+                  << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
+                  << static_cast<int>(share * 100.0) << "%" << (share >= 1.0 ? "\n" : "")
+                  << std::flush;
+      };
+    }
     const RenderedImage image = render(p->job, p->unresolved);
     ExrImage exr;
     exr.width = image.width;

@@ -1,5 +1,7 @@
 #include "raster/renderer.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -189,6 +191,8 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   image.coverage.assign(pixels, 0.0);
   const int s = job.samples_per_axis;
   const double per_sample = 1.0 / (s * s);
+  std::atomic<int> rows_done{0};
+  const int report_every = std::max(1, image.height / 50);
   parallel_for(image.height, job.threads, [&](int y) {
     for (int x = 0; x < image.width; ++x) {
       const std::size_t pixel =
@@ -229,6 +233,10 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
           image.x0[pixel][c] /= hits;
         }
       }
+    }
+    const int done = ++rows_done;
+    if (job.progress && (done % report_every == 0 || done == image.height)) {
+      job.progress(static_cast<double>(done) / image.height);
     }
   });
   lap(&RenderTimes::shading);

@@ -5,6 +5,7 @@
 // samples of a pixel in a fixed order.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "raster/camera.h"
@@ -39,6 +40,9 @@ struct RenderJob {
   ShadingSettings shading;
   int samples_per_axis = 2;  // S: S×S stratified samples per pixel
   int threads = 1;
+  // Called with the finished share of image rows (0…1) now and then during shading, from any
+  // worker thread; for progress display only.
+  std::function<void(double)> progress;
 };
 
 // Per-pixel outputs (box-filtered over the samples); `coverage` is the share of samples that hit
