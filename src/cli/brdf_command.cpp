@@ -19,14 +19,6 @@ struct BrdfFlags {
   int sun_order = 8;
 };
 
-Vec3 unit_vector(const std::string& flag, const std::string& text) {
-  const std::vector<double> v = parse_number_list(flag, text);
-  if (v.size() != 3) throw UsageError(flag, "expected x,y,z, got '" + text + "'");
-  const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(l > 0.0)) throw UsageError(flag, "the vector must not be zero");
-  return {v[0] / l, v[1] / l, v[2] / l};
-}
-
 void row(std::ostream& out, const std::string& name, double v) {
   out << name << ',' << format_number(v) << '\n';
 }
@@ -66,9 +58,9 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
   cmd->add_option("--fresnel", f->fresnel, "exact | schlick")->capture_default_str();
   cmd->add_option("--erfc", f->erfc, "exact | rational")->capture_default_str();
   return [f](std::ostream& out) {
-    const Vec3 view = unit_vector("--view", f->view);
-    const Vec3 sun = unit_vector("--sun", f->sun);
-    const Vec3 normal = unit_vector("--normal", f->normal);
+    const Vec3 view = parse_unit_vector("--view", f->view);
+    const Vec3 sun = parse_unit_vector("--sun", f->sun);
+    const Vec3 normal = parse_unit_vector("--normal", f->normal);
     const std::vector<double> s2 = parse_number_list("--sigma2", f->sigma2);
     if (s2.size() != 2 || s2[0] < 1e-6 || s2[0] > 1.0 || s2[1] < 1e-6 || s2[1] > 1.0) {
       throw UsageError("--sigma2",

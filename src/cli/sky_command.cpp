@@ -23,20 +23,12 @@ struct SkyFlags {
   int size = 0;
 };
 
-Vec3 parse_direction(const std::string& text) {
-  const std::vector<double> v = parse_number_list("--dir", text);
-  if (v.size() != 3) throw UsageError("--dir", "expected x,y,z, got '" + text + "'");
-  const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(length > 0.0)) throw UsageError("--dir", "the direction must not be zero");
-  return {v[0] / length, v[1] / length, v[2] / length};
-}
-
 void write_directions(std::ostream& out, const Sky& sky, const std::string& list) {
   out << "x,y,z,Y,chroma_x,chroma_y,R,G,B\n";
   std::size_t start = 0;
   while (true) {
     const std::size_t end = list.find(';', start);
-    const Vec3 d = parse_direction(list.substr(start, end - start));
+    const Vec3 d = parse_unit_vector("--dir", list.substr(start, end - start));
     const Chromaticity c = sky_chromaticity(sky, d);
     const Vec3 rgb = sky_radiance_rgb(sky, d);
     out << format_number(d[0]) << ',' << format_number(d[1]) << ',' << format_number(d[2]) << ','

@@ -39,4 +39,12 @@ std::string format_number(double v) {
   return buffer;
 }
 
+std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_view text) {
+  const std::vector<double> v = parse_number_list(flag, text);
+  if (v.size() != 3) throw UsageError(flag, "expected x,y,z, got '" + std::string(text) + "'");
+  const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(length > 0.0)) throw UsageError(flag, "the vector must not be zero");
+  return {v[0] / length, v[1] / length, v[2] / length};
+}
+
 }  // namespace oceanref::cli

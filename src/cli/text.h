@@ -1,6 +1,7 @@
 // Strict number parsing and exact number printing for the command line.
 #pragma once
 
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -23,6 +24,8 @@ class UsageError : public std::invalid_argument {
 double parse_number(const std::string& flag, std::string_view text, bool allow_infinity = false);
 // Comma-separated finite numbers, at least one.
 std::vector<double> parse_number_list(const std::string& flag, std::string_view text);
+// Three comma-separated finite numbers, not all zero, normalized to unit length.
+std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_view text);
 // 17 significant digits (round-trips every double), "inf"/"-inf"/"nan" for the rest.
 std::string format_number(double v);
 

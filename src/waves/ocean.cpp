@@ -48,48 +48,46 @@ std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int
   return fields;
 }
 
-double sample_periodic(const std::vector<double>& grid, int n, double size, double x, double z) {
-  const double spacing = size / n;
-  // Position in cells, in [0, N); a point within 1e−9 cell of a node is that node.
+namespace {
+// A point of a periodic N-cell grid of size L: the cell (m, n) below-left of it and the fractions
+// (f_u, f_v) ∈ [0, 1) across it. A point within 1e−9 cell of a node is that node.
+struct GridPoint {
+  int m, n;
+  double fu, fv;
+};
+GridPoint locate(int cells, double size, double x, double z) {
+  const double spacing = size / cells;
   const auto wrap = [&](double p) {
     double u = std::fmod(p, size) / spacing;
-    if (u < 0.0) u += n;
+    if (u < 0.0) u += cells;
     const double node = std::nearbyint(u);
     if (std::fabs(u - node) < 1e-9) u = node;
-    return u >= n ? u - n : u;
+    return u >= cells ? u - cells : u;
   };
   const double u = wrap(x);
   const double v = wrap(z);
-  const double u0 = std::floor(u);
-  const double v0 = std::floor(v);
-  const double fu = u - u0;
-  const double fv = v - v0;
-  const int m0 = static_cast<int>(u0) % n;
-  const int n0 = static_cast<int>(v0) % n;
-  const int m1 = (m0 + 1) % n;
-  const int n1 = (n0 + 1) % n;
+  return {static_cast<int>(std::floor(u)) % cells, static_cast<int>(std::floor(v)) % cells,
+          u - std::floor(u), v - std::floor(v)};
+}
+}  // namespace
+
+double sample_periodic(const std::vector<double>& grid, int n, double size, double x, double z) {
+  const GridPoint p = locate(n, size, x, z);
+  const int m1 = (p.m + 1) % n;
+  const int n1 = (p.n + 1) % n;
   const auto at = [&](int m, int k) { return grid[grid_offset(m, k, n)]; };
-  if (fu == 0.0 && fv == 0.0) return at(m0, n0);  // exactly the node value
-  return (1.0 - fv) * ((1.0 - fu) * at(m0, n0) + fu * at(m1, n0)) +
-         fv * ((1.0 - fu) * at(m0, n1) + fu * at(m1, n1));
+  if (p.fu == 0.0 && p.fv == 0.0) return at(p.m, p.n);  // exactly the node value
+  return (1.0 - p.fv) * ((1.0 - p.fu) * at(p.m, p.n) + p.fu * at(m1, p.n)) +
+         p.fv * ((1.0 - p.fu) * at(p.m, n1) + p.fu * at(m1, n1));
 }
 
 double sample_periodic_bicubic(const std::vector<double>& grid, int n, double size, double x,
                                double z) {
-  const double spacing = size / n;
-  const auto cell = [&](double p) {
-    double u = std::fmod(p, size) / spacing;
-    if (u < 0.0) u += n;
-    const double node = std::nearbyint(u);
-    if (std::fabs(u - node) < 1e-9) u = node;
-    return u >= n ? u - n : u;
-  };
-  const double u = cell(x);
-  const double v = cell(z);
-  const int m0 = static_cast<int>(std::floor(u)) % n;
-  const int n0 = static_cast<int>(std::floor(v)) % n;
-  const double fu = u - std::floor(u);
-  const double fv = v - std::floor(v);
+  const GridPoint p = locate(n, size, x, z);
+  const int m0 = p.m;
+  const int n0 = p.n;
+  const double fu = p.fu;
+  const double fv = p.fv;
   if (fu == 0.0 && fv == 0.0) return grid[grid_offset(m0, n0, n)];
   // Catmull–Rom weights of the nodes −1, 0, 1, 2.
   const auto weights = [](double t) {
