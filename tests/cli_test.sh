@@ -169,6 +169,21 @@ printf '{"waves": {}, "camera": {"position": [0, 1, 0], "look_at": [0, 1, 0]}}' 
 expect 2 'camera: camera: look_at equals position' render "$tmp/bad.json" -o "$tmp/x.exr"
 [ ! -e "$tmp/x.exr" ] || fail "a failed render left an output file"
 
+# --- compare ------------------------------------------------------------------------------------
+expect 0 '^result,pass' compare "$tmp/r1.exr" "$tmp/r2.exr"
+"$bin" render "$tmp/render.json" -o "$tmp/r_spp1.exr" --spp 1 >/dev/null
+checks=$((checks + 1))
+"$bin" compare "$tmp/r1.exr" "$tmp/r_spp1.exr" --report "$tmp/report" >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] || fail "compare of different images did not exit 1"
+grep -q '^result,fail' "$tmp/out" || fail "compare did not report the failure"
+for file in index.html diff.exr diff.png golden.png candidate.png; do
+  [ -s "$tmp/report/$file" ] || fail "compare --report did not write $file"
+done
+expect 0 '^result,pass' compare "$tmp/r1.exr" "$tmp/r_spp1.exr" --abs 1e30
+expect 2 'differ in size' compare "$tmp/r1.exr" "$tmp/sky.exr"
+expect 2 'cannot read' compare "$tmp/r1.exr" "$tmp/missing.exr"
+expect 2 '--yes' golden update --root reference
+
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)
 "$bin" "${args[@]}" >"$tmp/a" && "$bin" "${args[@]}" >"$tmp/b"

@@ -32,8 +32,9 @@ std::vector<float> to_float(const std::vector<double>& v) {
   return std::vector<float>(v.begin(), v.end());
 }
 
-void write_fields_exr(const std::string& path, const Scene& scene, const Ocean& ocean,
-                      int threads) {
+}  // namespace
+
+ExrImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
   progress("synthesizing " + std::to_string(ocean.cascades.size()) + " cascades");
   const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, threads);
   const int n = scene.waves.resolution;
@@ -92,6 +93,13 @@ void write_fields_exr(const std::string& path, const Scene& scene, const Ocean& 
       "sample (m, n) at x = m L/N, z = n L/N (EXR column m, row n); c<i>.height, disp_x, disp_z "
       "are subsampled by N_h/N_l; sum.* covers cascade 0 (L_0), other cascades sampled "
       "bilinearly; lengths in m, slopes and Jacobian dimensionless";
+  return image;
+}
+
+namespace {
+void write_fields_exr(const std::string& path, const Scene& scene, const Ocean& ocean,
+                      int threads) {
+  const ExrImage image = fields_image(scene, ocean, threads);
   progress("writing " + path);
   write_exr(path, image);
 }

@@ -6,6 +6,7 @@
 
 #include "cli/bench_command.h"
 #include "cli/brdf_command.h"
+#include "cli/compare_command.h"
 #include "cli/fields_command.h"
 #include "cli/render_command.h"
 #include "cli/sky_command.h"
@@ -22,6 +23,8 @@ int main(int argc, char** argv) {
   const auto run_brdf = oceanref::cli::add_brdf_command(app);
   const auto run_render = oceanref::cli::add_render_command(app);
   const auto run_probe = oceanref::cli::add_probe_command(app);
+  const auto run_compare = oceanref::cli::add_compare_command(app);
+  const auto run_golden = oceanref::cli::add_golden_command(app);
   const auto run_bench = oceanref::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
@@ -41,12 +44,19 @@ int main(int argc, char** argv) {
   try {
     // Output is assembled in memory and written only when complete: no partial tables.
     std::ostringstream out;
-    if (app.got_subcommand("spectrum")) run_spectrum(out);
-    if (app.got_subcommand("fields")) run_fields(out);
-    if (app.got_subcommand("sky")) run_sky(out);
-    if (app.got_subcommand("brdf")) run_brdf(out);
-    if (app.got_subcommand("render")) run_render(out);
-    if (app.got_subcommand("probe")) run_probe(out);
+    try {
+      if (app.got_subcommand("spectrum")) run_spectrum(out);
+      if (app.got_subcommand("fields")) run_fields(out);
+      if (app.got_subcommand("sky")) run_sky(out);
+      if (app.got_subcommand("brdf")) run_brdf(out);
+      if (app.got_subcommand("render")) run_render(out);
+      if (app.got_subcommand("probe")) run_probe(out);
+      if (app.got_subcommand("compare")) run_compare(out);
+      if (app.got_subcommand("golden")) run_golden(out);
+    } catch (const oceanref::cli::CheckFailed&) {
+      std::cout << out.str() << std::flush;
+      return 1;
+    }
     if (app.got_subcommand("bench")) run_bench(out);
     std::cout << out.str() << std::flush;
     return std::cout ? 0 : 2;

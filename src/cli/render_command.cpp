@@ -27,7 +27,7 @@ void progress(const std::string& message) {
   if (isatty(STDERR_FILENO)) std::cerr << "oceanref: " << message << '\n';
 }
 
-int resolve_threads(int requested) {
+int resolve_threads_in_range(int requested) {
   if (requested < 0 || requested > 1024) {
     throw UsageError("--threads",
                      "must be in [0, 1024] (0: all cores), got " + std::to_string(requested));
@@ -111,6 +111,57 @@ void write_preview(const std::string& path, const RenderedImage& image, const Im
 }
 }  // namespace
 
+int resolve_threads(int requested) {
+  return resolve_threads_in_range(requested);
+}
+
+RenderedScene render_scene(const std::string& path, int threads, int spp, bool aov,
+                           bool show_progress) {
+  const auto p = prepare(path, threads, spp);
+  progress("rendering " + std::to_string(p->scene.image.width) + "x" +
+           std::to_string(p->scene.image.height) + " at " +
+           std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) + " spp");
+  if (show_progress) {
+    p->job.progress = [](double share) {
+      const int width = 40;
+      const int filled = static_cast<int>(share * width);
+      std::cerr << "\r  [" << std::string(static_cast<std::size_t>(filled), '#')
+                << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
+                << static_cast<int>(share * 100.0) << "%" << (share >= 1.0 ? "\n" : "")
+                << std::flush;
+    };
+  }
+  RenderedScene r;
+  r.settings = p->scene.image;
+  r.image = render(p->job, p->unresolved);
+  const RenderedImage& image = r.image;
+  ExrImage& exr = r.exr;
+  exr.width = image.width;
+  exr.height = image.height;
+  exr.channels = channels_of("", image.radiance);
+  r.pixel_sha256 = pixel_hash(exr.channels);
+  if (aov) {
+    for (const auto& [name, layer] :
+         {std::pair{"sun.", &image.sun}, std::pair{"sky.", &image.sky},
+          std::pair{"sea.", &image.sea}, std::pair{"foam.", &image.foam},
+          std::pair{"normal.", &image.normal}, std::pair{"x0.", &image.x0}}) {
+      for (ExrChannel& c : channels_of(name, *layer)) exr.channels.push_back(std::move(c));
+    }
+    exr.channels.push_back(
+        {"depth", 1, std::vector<float>(image.depth.begin(), image.depth.end())});
+    exr.channels.push_back(
+        {"coverage", 1, std::vector<float>(image.coverage.begin(), image.coverage.end())});
+  }
+  exr.attributes["oceanref.version"] = kVersion;
+  exr.attributes["oceanref.scene_sha256"] = sha256_hex(p->scene.canonical);
+  exr.attributes["oceanref.seed"] = std::to_string(p->scene.seed);
+  exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
+  exr.attributes["oceanref.pixel_sha256"] = r.pixel_sha256;
+  exr.attributes["oceanref.unresolved_slope_variance"] =
+      format_number(image.unresolved.upwind) + "," + format_number(image.unresolved.crosswind);
+  return r;
+}
+
 std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   struct Flags {
     std::string scene, output, png;
@@ -133,48 +184,13 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
       "sun.RGB, sky.RGB, sea.RGB, foam.RGB");
   return [f](std::ostream& out) {
-    const int threads = resolve_threads(f->threads);
-    const auto p = prepare(f->scene, threads, f->spp);
-    progress("rendering " + std::to_string(p->scene.image.width) + "x" +
-             std::to_string(p->scene.image.height) + " at " +
-             std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) + " spp");
-    if (isatty(STDERR_FILENO)) {
-      p->job.progress = [](double share) {
-        const int width = 40;
-        const int filled = static_cast<int>(share * width);
-        std::cerr << "\r  [" << std::string(static_cast<std::size_t>(filled), '#')
-                  << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
-                  << static_cast<int>(share * 100.0) << "%" << (share >= 1.0 ? "\n" : "")
-                  << std::flush;
-      };
-    }
-    const RenderedImage image = render(p->job, p->unresolved);
-    ExrImage exr;
-    exr.width = image.width;
-    exr.height = image.height;
-    exr.channels = channels_of("", image.radiance);
-    const std::string hash = pixel_hash(exr.channels);
-    if (f->aov) {
-      for (const auto& [name, layer] :
-           {std::pair{"sun.", &image.sun}, std::pair{"sky.", &image.sky},
-            std::pair{"sea.", &image.sea}, std::pair{"foam.", &image.foam}}) {
-        for (ExrChannel& c : channels_of(name, *layer)) exr.channels.push_back(std::move(c));
-      }
-      exr.channels.push_back(
-          {"depth", 1, std::vector<float>(image.depth.begin(), image.depth.end())});
-      exr.channels.push_back(
-          {"coverage", 1, std::vector<float>(image.coverage.begin(), image.coverage.end())});
-    }
-    exr.attributes["oceanref.version"] = kVersion;
-    exr.attributes["oceanref.scene_sha256"] = sha256_hex(p->scene.canonical);
-    exr.attributes["oceanref.seed"] = std::to_string(p->scene.seed);
-    exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
-    exr.attributes["oceanref.pixel_sha256"] = hash;
-    exr.attributes["oceanref.unresolved_slope_variance"] =
-        format_number(image.unresolved.upwind) + "," + format_number(image.unresolved.crosswind);
+    const RenderedScene r = render_scene(f->scene, resolve_threads_in_range(f->threads), f->spp,
+                                         f->aov, isatty(STDERR_FILENO));
+    const ExrImage& exr = r.exr;
+    const std::string& hash = r.pixel_sha256;
     progress("writing " + f->output);
     write_exr(f->output, exr);
-    if (!f->png.empty()) write_preview(f->png, image, p->scene.image);
+    if (!f->png.empty()) write_preview(f->png, r.image, r.settings);
     out << "pixel_sha256," << hash << '\n';
   };
 }
@@ -193,7 +209,7 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
   cmd->add_option("--pixel", f->pixel, "x,y (column, row from the top-left)")->required();
   cmd->add_option("--threads", f->threads, "worker threads (default: all cores)");
   return [f](std::ostream& out) {
-    const int threads = resolve_threads(f->threads);
+    const int threads = resolve_threads_in_range(f->threads);
     const std::vector<double> xy = parse_number_list("--pixel", f->pixel);
     const auto p = prepare(f->scene, threads, 0);
     if (xy.size() != 2 || xy[0] < 0 || xy[1] < 0 || xy[0] >= p->scene.image.width ||

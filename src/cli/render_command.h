@@ -4,8 +4,25 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <iosfwd>
+#include <string>
+
+#include "io/exr.h"
+#include "raster/renderer.h"
+#include "scene/scene.h"
 
 namespace oceanref::cli {
+
+// A scene file rendered to the EXR that `render` writes (attributes included) and its pixel hash.
+struct RenderedScene {
+  ExrImage exr;
+  std::string pixel_sha256;
+  RenderedImage image;
+  ImageSettings settings;
+};
+RenderedScene render_scene(const std::string& path, int threads, int spp, bool aov,
+                           bool show_progress);
+// --threads: 0 means all cores; throws UsageError outside [0, 1024].
+int resolve_threads(int requested);
 
 std::function<void(std::ostream& out)> add_render_command(CLI::App& app);
 std::function<void(std::ostream& out)> add_probe_command(CLI::App& app);

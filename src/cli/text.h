@@ -20,6 +20,10 @@ class UsageError : public std::invalid_argument {
   std::string flag_;
 };
 
+// A check that ran and failed (compare, golden verify): the command's output is still printed,
+// and the exit status is 1.
+struct CheckFailed {};
+
 // The whole text must be one finite number ("inf" accepted when allow_infinity).
 double parse_number(const std::string& flag, std::string_view text, bool allow_infinity = false);
 // Comma-separated finite numbers, at least one.
