@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -16,6 +17,7 @@
 #include "cli/text.h"
 #include "scene/scene.h"
 #include "shading/ocean_lighting.h"
+#include "waves/direct_sum.h"
 #include "waves/ocean.h"
 
 namespace oceanref::cli {
@@ -393,6 +395,177 @@ void bench_interpolation(std::ostream& out, const std::string& path, int threads
         << ',' << format_number(seconds) << '\n';
   }
 }
+// The speed/accuracy study: every knob timed and compared with its most exact setting in the
+// same run (reference/ACCURACY.md, "Study").
+double seconds_of(const std::function<void()>& body) {
+  const auto t0 = std::chrono::steady_clock::now();
+  body();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double relative_rmse(const std::vector<Vec3>& a, const std::vector<Vec3>& reference) {
+  double err = 0.0, ref = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = a[i][c] - reference[i][c];
+      err += d * d;
+      ref += reference[i][c] * reference[i][c];
+    }
+  }
+  return std::sqrt(err / std::max(ref, 1e-300));
+}
+
+void bench_study(std::ostream& out, const std::string& path, int threads) {
+  const Scene base = load_scene(path);
+  // 1. FFT grid vs direct summation at the grid nodes of cascade 0.
+  {
+    const Ocean ocean = realize_ocean(base.waves, threads);
+    std::vector<CascadeFields> fields;
+    const double fft = seconds_of([&] { fields = synthesize_ocean(ocean, base.time, threads); });
+    const CascadeFields& f0 = fields[0];
+    const CascadeSpectra& c0 = ocean.cascades[0];
+    double worst = 0.0;
+    int points = 0;
+    const double direct = seconds_of([&] {
+      for (int m = 0; m < f0.high_resolution; m += f0.high_resolution / 8) {
+        const double x = m * f0.size / f0.high_resolution;
+        const auto d = direct_sum(c0.low, c0.high, x, 0.0, base.time);
+        const auto g = cascade_from_grids(f0, x, 0.0);
+        for (std::size_t q = 0; q < d.size(); ++q) worst = std::max(worst, std::fabs(d[q] - g[q]));
+        ++points;
+      }
+    });
+    const double cells = static_cast<double>(f0.high_resolution) * f0.high_resolution;
+    out << "# 1. FFT grids vs direct summation (default scene, all cascades' fields)\n"
+        << "fft_seconds_per_frame," << format_number(fft) << "\nfft_seconds_per_node_of_cascade0,"
+        << format_number(fft / (cells * static_cast<double>(fields.size())))
+        << "\ndirect_seconds_per_point," << format_number(direct / points)
+        << "\nmax_abs_difference_at_nodes," << format_number(worst) << '\n';
+  }
+  // 2. FFT resolution and cascade count: Hs and mss of the sampled spectrum vs the continuous.
+  {
+    const Spectrum s = make_spectrum(base.waves.spectrum);
+    const SpectralMoments exact = spectral_moments(s, 2.0 * std::numbers::pi / kMinimumWavelength);
+    out << "# 2. FFT resolution N and cascade count: sampled sum of Theta dk^2 vs the continuous "
+           "spectrum to lambda_min (Hs "
+        << format_number(exact.significant_wave_height) << " m, mss " << format_number(exact.mss)
+        << ")\nN,cascades,Hs_relative_error,mss_relative_error,synthesis_seconds\n";
+    for (const int n : {32, 64, 128, 256}) {
+      for (const int count : {1, 2, 3, 4}) {
+        WaveSettings w = base.waves;
+        w.resolution = w.low_resolution = n;
+        w.sizes = golden_ratio_sizes(800.0, count, GoldenFactor::small);
+        w.choppiness.assign(w.sizes.size(), 0.0);
+        const Ocean ocean = realize_ocean(w, threads);
+        double m0 = 0.0, mss = 0.0;
+        for (const CascadeSpectra& c : ocean.cascades) {
+          const int res = c.high.pattern.resolution;
+          const double dk = wavenumber_spacing(c.high.pattern.size);
+          for (int b = 0; b < res; ++b) {
+            for (int a = 0; a < res; ++a) {
+              const double kx = wave_index(a, res) * dk, kz = wave_index(b, res) * dk;
+              const double k = std::hypot(kx, kz);
+              if (!(k > 0.0) || !c.high.pattern.band.contains(k)) continue;
+              const double e = wavevector_spectrum(s, kx, kz) * dk * dk;
+              m0 += e;
+              mss += k * k * e;
+            }
+          }
+        }
+        const double seconds = seconds_of([&] { (void)synthesize_ocean(ocean, 0.0, threads); });
+        out << n << ',' << count << ','
+            << format_number(4.0 * std::sqrt(m0) / exact.significant_wave_height - 1.0) << ','
+            << format_number(mss / exact.mss - 1.0) << ',' << format_number(seconds) << '\n';
+      }
+    }
+  }
+  // 3–4. Projected-grid resolution and samples per pixel: images vs the finest setting.
+  const auto render_with = [&](int columns, int axis, int width, int height, double* seconds) {
+    Scene scene = base;
+    scene.grid.columns = scene.grid.rows = columns;
+    scene.image.width = width;
+    scene.image.height = height;
+    scene.image.samples_per_axis = axis;
+    const Ocean ocean = realize_ocean(scene.waves, threads);
+    const WindSlopeVariance u = unresolved_slope_variance(ocean, scene.waves);
+    RenderJob job;
+    job.ocean = &ocean;
+    job.time = scene.time;
+    job.camera = scene_camera(scene);
+    job.grid = scene.grid;
+    job.sky = scene_sky(scene);
+    job.shading = scene.shading;
+    job.samples_per_axis = axis;
+    job.threads = threads;
+    RenderedImage image;
+    *seconds = seconds_of([&] { image = render(job, u); });
+    return image;
+  };
+  {
+    double t = 0.0;
+    const RenderedImage finest = render_with(2048, 1, 320, 180, &t);
+    out << "# 3. projected-grid resolution (320x180, 1 spp) vs 2048^2 (" << format_number(t)
+        << " s)\ngrid,relative_rmse,seconds\n";
+    for (const int columns : {64, 128, 256, 512, 1024}) {
+      const RenderedImage image = render_with(columns, 1, 320, 180, &t);
+      out << columns << ',' << format_number(relative_rmse(image.radiance, finest.radiance)) << ','
+          << format_number(t) << '\n';
+    }
+  }
+  {
+    double t = 0.0;
+    const RenderedImage finest = render_with(512, 8, 160, 90, &t);
+    out << "# 4. samples per pixel (160x90, grid 512) vs 64 spp (" << format_number(t)
+        << " s)\nspp,relative_rmse,seconds\n";
+    for (const int axis : {1, 2, 3, 4}) {
+      const RenderedImage image = render_with(512, axis, 160, 90, &t);
+      out << axis * axis << ',' << format_number(relative_rmse(image.radiance, finest.radiance))
+          << ',' << format_number(t) << '\n';
+    }
+  }
+  // 5. Whitecap footprint statistics: the share of samples with det J < ε vs the Gaussian model
+  //    ½ erfc((μ − ε)/√(2σ²)) of Dupuy & Bruneton from the footprint's mean and variance of J.
+  {
+    WaveSettings stormy = base.waves;  // a sea that folds: 16 m/s, u = −2.5
+    stormy.spectrum.wind_speed = 16.0;
+    stormy.choppiness.assign(stormy.sizes.size(), -2.5);
+    const Ocean ocean = realize_ocean(stormy, threads);
+    const std::vector<CascadeFields> fields = synthesize_ocean(ocean, base.time, threads);
+    const CascadeFields& f0 = fields[0];
+    const double eps = base.shading.whitecap_threshold;
+    double difference = 0.0, largest = 0.0, covered = 0.0;
+    int footprints = 0;
+    const int n = f0.high_resolution;
+    for (int by = 0; by + 4 <= n; by += 4) {
+      for (int bx = 0; bx + 4 <= n; bx += 4) {
+        double mean = 0.0, square = 0.0, indicator = 0.0;
+        for (int y = by; y < by + 4; ++y) {
+          for (int x = bx; x < bx + 4; ++x) {
+            const double j =
+                combine_from_grids(ocean, fields, x * f0.size / n, y * f0.size / n).jacobian;
+            mean += j / 16.0;
+            square += j * j / 16.0;
+            indicator += (j < eps ? 1.0 : 0.0) / 16.0;
+          }
+        }
+        const double gauss = whitecap_coverage(mean, std::max(0.0, square - mean * mean), eps);
+        difference += std::fabs(gauss - indicator);
+        largest = std::max(largest, std::fabs(gauss - indicator));
+        covered += indicator;
+        ++footprints;
+      }
+    }
+    out << "# 5. whitecap coverage over 4x4-node footprints of cascade 0's tile (16 m/s, u = "
+           "-2.5): Gaussian "
+           "statistics vs the share of nodes with det J < threshold\n"
+        << "mean_coverage," << format_number(covered / footprints) << "\nmean_abs_difference,"
+        << format_number(difference / footprints) << "\nmax_abs_difference,"
+        << format_number(largest) << '\n';
+  }
+  out << "# 6. interpolation modes: see below; float vs double synthesis: oceanref bench "
+         "synthesis; BRDF options: oceanref bench lighting\n";
+  bench_interpolation(out, path, threads);
+}
 }  // namespace
 
 std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
@@ -448,7 +621,22 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   render_cmd->add_option("--spp", render_flags->spp, "samples per pixel (a square)")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
-  return [flags, synthesis, lighting, lighting_order, render_cmd, render_flags](std::ostream& out) {
+  auto study_flags = std::make_shared<RenderFlags>();
+  CLI::App* study = bench->add_subcommand(
+      "study",
+      "The speed/accuracy study: FFT vs direct, FFT resolution and cascades (Hs, mss), "
+      "projected-grid resolution, samples per pixel, whitecap statistics, "
+      "interpolation; each against its most exact setting in the same run.");
+  study->add_option("--scene", study_flags->scene, "scene file")->capture_default_str();
+  study->add_option("--threads", study_flags->threads, "worker threads")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  return [flags, synthesis, lighting, lighting_order, render_cmd, render_flags, study,
+          study_flags](std::ostream& out) {
+    if (study->parsed()) {
+      bench_study(out, study_flags->scene, study_flags->threads);
+      return;
+    }
     if (lighting->parsed()) {
       bench_lighting(out, *lighting_order);
       return;
