@@ -562,9 +562,15 @@ void bench_study(std::ostream& out, const std::string& path, int threads) {
         << format_number(difference / footprints) << "\nmax_abs_difference,"
         << format_number(largest) << '\n';
   }
-  out << "# 6. interpolation modes: see below; float vs double synthesis: oceanref bench "
-         "synthesis; BRDF options: oceanref bench lighting\n";
+  out << "# 6. interpolation modes vs direct summation\n";
   bench_interpolation(out, path, threads);
+  out << "# 7. synthesis: KissFFT vs FFTW, float vs double fields\n";
+  Flags synthesis;
+  synthesis.threads = threads;
+  synthesis.frames = 5;
+  bench_synthesis(out, synthesis);
+  out << "# 8. BRDF options vs the exact terms\n";
+  bench_lighting(out, 64);
 }
 }  // namespace
 
