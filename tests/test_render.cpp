@@ -36,14 +36,7 @@ std::unique_ptr<Setup> prepare(const Scene& scene, int threads) {
   auto s = std::make_unique<Setup>();
   s->scene = scene;
   s->ocean = realize_ocean(scene.waves, 1);
-  s->job.ocean = &s->ocean;
-  s->job.time = scene.time;
-  s->job.camera = scene_camera(scene);
-  s->job.grid = scene.grid;
-  s->job.sky = scene_sky(scene);
-  s->job.shading = scene.shading;
-  s->job.samples_per_axis = scene.image.samples_per_axis;
-  s->job.threads = threads;
+  s->job = scene_render_job(s->scene, s->ocean, threads);
   return s;
 }
 }  // namespace

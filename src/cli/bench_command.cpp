@@ -331,15 +331,7 @@ void bench_render(std::ostream& out, const std::string& path, int threads, int w
   const WindSlopeVariance unresolved = unresolved_slope_variance(ocean, scene.waves);
   const double prepare =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  RenderJob job;
-  job.ocean = &ocean;
-  job.time = scene.time;
-  job.camera = scene_camera(scene);
-  job.grid = scene.grid;
-  job.sky = scene_sky(scene);
-  job.shading = scene.shading;
-  job.samples_per_axis = scene.image.samples_per_axis;
-  job.threads = threads;
+  RenderJob job = scene_render_job(scene, ocean, threads);
   RenderTimes times;
   const auto t1 = std::chrono::steady_clock::now();
   const RenderedImage image = render(job, unresolved, &times);
@@ -488,15 +480,7 @@ void bench_study(std::ostream& out, const std::string& path, int threads) {
     scene.image.samples_per_axis = axis;
     const Ocean ocean = realize_ocean(scene.waves, threads);
     const WindSlopeVariance u = unresolved_slope_variance(ocean, scene.waves);
-    RenderJob job;
-    job.ocean = &ocean;
-    job.time = scene.time;
-    job.camera = scene_camera(scene);
-    job.grid = scene.grid;
-    job.sky = scene_sky(scene);
-    job.shading = scene.shading;
-    job.samples_per_axis = axis;
-    job.threads = threads;
+    RenderJob job = scene_render_job(scene, ocean, threads);
     RenderedImage image;
     *seconds = seconds_of([&] { image = render(job, u); });
     return image;

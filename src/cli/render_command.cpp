@@ -56,14 +56,7 @@ std::unique_ptr<Prepared> prepare(const std::string& path, int threads, int spp)
   progress("realizing the wave spectrum");
   p->ocean = realize_ocean(p->scene.waves, threads);
   p->unresolved = unresolved_slope_variance(p->ocean, p->scene.waves);
-  p->job.ocean = &p->ocean;
-  p->job.time = p->scene.time;
-  p->job.camera = scene_camera(p->scene);
-  p->job.grid = p->scene.grid;
-  p->job.sky = scene_sky(p->scene);
-  p->job.shading = p->scene.shading;
-  p->job.samples_per_axis = p->scene.image.samples_per_axis;
-  p->job.threads = threads;
+  p->job = scene_render_job(p->scene, p->ocean, threads);
   return p;
 }
 

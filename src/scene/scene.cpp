@@ -453,6 +453,19 @@ Camera scene_camera(const Scene& s) {
                      s.image.height);
 }
 
+RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) {
+  RenderJob job;
+  job.ocean = &ocean;
+  job.time = scene.time;
+  job.camera = scene_camera(scene);
+  job.grid = scene.grid;
+  job.sky = scene_sky(scene);
+  job.shading = scene.shading;
+  job.samples_per_axis = scene.image.samples_per_axis;
+  job.threads = threads;
+  return job;
+}
+
 Sky scene_sky(const Scene& s) {
   const double deg = std::numbers::pi / 180.0;
   return make_sky(s.atmosphere.turbidity, s.atmosphere.sun_zenith_deg * deg,

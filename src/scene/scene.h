@@ -65,6 +65,8 @@ struct Scene {
 // The camera and sky of a scene (the validated settings resolved).
 Camera scene_camera(const Scene& scene);
 Sky scene_sky(const Scene& scene);
+// Everything `render` needs from a scene and its realized ocean (which must outlive the job).
+RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads);
 
 // The memory cap for wave grids (bytes): scenes whose grids would need more are rejected.
 inline constexpr double kWaveMemoryCap = 8.0 * 1024 * 1024 * 1024;
