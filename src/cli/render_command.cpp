@@ -145,6 +145,7 @@ RenderedScene render_scene(const std::string& path, int threads, int spp, bool a
     exr.channels.push_back(
         {"coverage", 1, std::vector<float>(image.coverage.begin(), image.coverage.end())});
   }
+  exr.srgb_chromaticities = true;
   exr.attributes["oceanref.version"] = kVersion;
   exr.attributes["oceanref.scene_sha256"] = sha256_hex(p->scene.canonical);
   exr.attributes["oceanref.seed"] = std::to_string(p->scene.seed);

@@ -1,10 +1,12 @@
 #include "io/exr.h"
 
 #include <ImfChannelList.h>
+#include <ImfChromaticities.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <unistd.h>
 
@@ -32,6 +34,12 @@ void write_exr(const std::string& path, const ExrImage& image) {
                        Imf::ZIP_COMPRESSION);
     for (const auto& [key, value] : image.attributes) {
       header.insert(key, Imf::StringAttribute(value));
+    }
+    if (image.srgb_chromaticities) {
+      // Rec. 709 / sRGB primaries and the D65 white (IEC 61966-2-1).
+      Imf::addChromaticities(
+          header, Imf::Chromaticities(Imath::V2f(0.64f, 0.33f), Imath::V2f(0.30f, 0.60f),
+                                      Imath::V2f(0.15f, 0.06f), Imath::V2f(0.3127f, 0.3290f)));
     }
     Imf::FrameBuffer frame;
     std::vector<std::vector<float>> copies;  // the library wants mutable pointers

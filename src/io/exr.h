@@ -21,6 +21,7 @@ struct ExrImage {
   int height = 0;
   std::vector<ExrChannel> channels;
   std::map<std::string, std::string> attributes;  // string header attributes
+  bool srgb_chromaticities = false;  // write the standard chromaticities of linear sRGB (D65)
 };
 
 // Writes with ZIP compression; throws std::runtime_error naming the file on failure.
