@@ -113,16 +113,21 @@ void write_point(std::ostream& out, const Scene& scene, const Ocean& ocean, doub
     out << cascade << ',' << name << ',' << format_number(fft) << ',' << format_number(direct)
         << ',' << format_number(fft - direct) << '\n';
   };
+  const std::vector<EvolvedCascade> evolved = evolve_ocean(ocean, scene.time);
+  PointFields g;  // the combination from the grids
+  PointFields d;  // and from direct summation
   for (std::size_t i = 0; i < fields.size(); ++i) {
-    const auto grid = cascade_from_grids(fields[i], x, z);
     const CascadeSpectra& c = ocean.cascades[i];
-    const auto direct = direct_sum(c.low, c.high, x, z, scene.time);
+    const auto grid = cascade_from_grids(fields[i], x, z);
+    const auto direct = direct_sum(c.low, c.high, evolved[i], x, z);
     for (std::size_t q = 0; q < kFieldNames.size(); ++q) {
       row(std::to_string(i), kFieldNames[q], grid[q], direct[q]);
     }
+    add_cascade(g, grid, c.choppiness);
+    add_cascade(d, direct, c.choppiness);
   }
-  const PointFields g = combine_from_grids(ocean, fields, x, z);
-  const PointFields d = combine_direct(ocean, x, z, scene.time);
+  finish_combination(g);
+  finish_combination(d);
   row("sum", "height", g.height, d.height);
   row("sum", "slope_x", g.slope_x, d.slope_x);
   row("sum", "slope_z", g.slope_z, d.slope_z);

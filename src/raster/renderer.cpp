@@ -26,8 +26,28 @@ struct Geometry {
   std::vector<std::array<std::uint32_t, 3>> triangles;
 };
 
-Geometry build_geometry(const RenderJob& job, const std::vector<CascadeFields>& fields,
-                        double bound) {
+// The waves of one frame as the chosen interpolation reads them: FFT grids, or for direct
+// summation h(k, t) of every cascade (each computed only when needed).
+struct FrameFields {
+  std::vector<CascadeFields> grids;
+  std::vector<EvolvedCascade> evolved;
+};
+
+FrameFields frame_fields(const RenderJob& job) {
+  FrameFields f;
+  if (job.shading.interpolation == Interpolation::direct) {
+    f.evolved = evolve_ocean(*job.ocean, job.time);
+  } else {
+    f.grids = synthesize_ocean(*job.ocean, job.time, job.threads);
+  }
+  return f;
+}
+
+PointFields fields_at(const RenderJob& job, const FrameFields& f, glm::dvec2 x0) {
+  return combine_at(*job.ocean, f.grids, f.evolved, x0.x, x0.y, job.shading.interpolation);
+}
+
+Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double bound) {
   Geometry g;
   ProjectedGridSettings settings = job.grid;
   settings.displacement_bound = bound;
@@ -41,8 +61,7 @@ Geometry build_geometry(const RenderJob& job, const std::vector<CascadeFields>& 
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
                             static_cast<std::size_t>(i);
       const glm::dvec2 x0 = g.grid.base[k];
-      const PointFields p =
-          combine_at(*job.ocean, fields, x0.x, x0.y, job.time, job.shading.interpolation);
+      const PointFields p = fields_at(job, fields, x0);
       // Displaced vertex (Gamper eq. 4.19–4.20, 4.24): x0 + Σ u_i D_i, height Σ η_i.
       g.world[k] = {x0.x + p.raw[static_cast<std::size_t>(Field::displacement_x)], p.height,
                     x0.y + p.raw[static_cast<std::size_t>(Field::displacement_z)]};
@@ -61,22 +80,27 @@ Geometry build_geometry(const RenderJob& job, const std::vector<CascadeFields>& 
   return g;
 }
 
+// Everything the shading of a frame shares: computed once, not per sample.
 struct Lighting {
   Vec3 sun_direction;
-  Vec3 sun_radiance;    // L_sun, cd/m² per channel
-  Vec3 sky_irradiance;  // E_sky on a horizontal plane
+  Vec3 sun_radiance;       // L_sun, cd/m² per channel
+  Vec3 sky_irradiance;     // E_sky on a horizontal plane
+  double cos_sun_radius;   // the sun disk's edge
+  double sun_solid_angle;  // Ω_sun
+  QuadratureRule hermite;  // Gauss–Hermite rule of the sky and F̄ (order sky_order)
+  QuadratureRule disk;     // Gauss–Legendre rule over the sun disk (empty: point sun)
 };
 
-SampleProbe shade_sample(const RenderJob& job, const std::vector<CascadeFields>& fields,
-                         const Geometry& g, const Fragment& f, const glm::dvec3& ray,
-                         const Lighting& light, const WindSlopeVariance& unresolved) {
+SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const Geometry& g,
+                         const Fragment& f, const glm::dvec3& ray, const Lighting& light,
+                         const WindSlopeVariance& unresolved) {
   SampleProbe p;
   const ShadingSettings& sh = job.shading;
   if (f.triangle < 0) {
     // The sky (and the sun disk) behind the sea.
     const Vec3 d = to_vec3(ray);
     p.radiance = sky_radiance_rgb(job.sky, d);
-    if (dot3(d, light.sun_direction) >= std::cos(kSunAngularRadius)) {
+    if (dot3(d, light.sun_direction) >= light.cos_sun_radius) {
       for (std::size_t c = 0; c < 3; ++c) p.radiance[c] += light.sun_radiance[c];
     }
     return p;
@@ -89,7 +113,7 @@ SampleProbe shade_sample(const RenderJob& job, const std::vector<CascadeFields>&
     p.x0 += f.weights[v] * g.grid.base[t[v]];
     p.position += f.weights[v] * g.world[t[v]];
   }
-  p.fields = combine_at(*job.ocean, fields, p.x0.x, p.x0.y, job.time, sh.interpolation);
+  p.fields = fields_at(job, fields, p.x0);
   p.normal = surface_normal(p.fields.slope_x, p.fields.slope_z);
   p.view = to_vec3(glm::normalize(job.camera.position - p.position));
   // The geometry faces the camera but the shading normal (from waves finer than the grid) may
@@ -104,30 +128,37 @@ SampleProbe shade_sample(const RenderJob& job, const std::vector<CascadeFields>&
   }
   const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   const SlopeVariance s{unresolved.upwind, unresolved.crosswind};
-  p.mean_fresnel = mean_fresnel(p.view, frame, s, sh.sky_order, sh.brdf);
+  p.mean_fresnel = mean_fresnel(p.view, frame, s, light.hermite, sh.brdf);
   if (sh.sun) {
     const double reflectance = reflected_sun(light.sun_direction, kSunAngularRadius, p.view, frame,
-                                             s, sh.sun_order, sh.brdf);
+                                             s, light.disk, sh.brdf);
     for (std::size_t c = 0; c < 3; ++c) p.sun[c] = reflectance * light.sun_radiance[c];
   }
-  if (sh.sky) p.sky = reflected_sky(p.view, frame, s, job.sky, sh.sky_order, sh.brdf);
+  if (sh.sky) p.sky = reflected_sky(p.view, frame, s, job.sky, light.hermite, sh.brdf);
   if (sh.sea) p.sea = refracted_sea(p.mean_fresnel, sh.sea_colour, light.sky_irradiance);
   for (std::size_t c = 0; c < 3; ++c) p.radiance[c] = p.sun[c] + p.sky[c] + p.sea[c];
   if (sh.whitecaps) {
     // Per-sample indicator; the S×S samples of a pixel give its footprint coverage.
     p.whitecap_coverage = whitecap_coverage(p.fields.jacobian, 0.0, sh.whitecap_threshold);
     const double cos_sun = std::fmax(0.0, dot3(p.normal, light.sun_direction));
-    const double solid_angle = 2.0 * std::numbers::pi * (1.0 - std::cos(kSunAngularRadius));
     Vec3 e_sun{};
-    for (std::size_t c = 0; c < 3; ++c) e_sun[c] = light.sun_radiance[c] * solid_angle * cos_sun;
+    for (std::size_t c = 0; c < 3; ++c) {
+      e_sun[c] = light.sun_radiance[c] * light.sun_solid_angle * cos_sun;
+    }
     p.foam = foam_radiance(sh.foam_albedo, e_sun, light.sky_irradiance);
     p.radiance = mix_whitecaps(p.radiance, p.foam, p.whitecap_coverage);
   }
   return p;
 }
 
-Lighting lighting_of(const Sky& sky) {
-  return {sky.sun_direction, sun_radiance_rgb(sky), sky_irradiance(sky).rgb};
+Lighting lighting_of(const Sky& sky, const ShadingSettings& sh) {
+  return {sky.sun_direction,
+          sun_radiance_rgb(sky),
+          sky_irradiance(sky).rgb,
+          std::cos(kSunAngularRadius),
+          2.0 * std::numbers::pi * (1.0 - std::cos(kSunAngularRadius)),
+          gauss_hermite(sh.sky_order),
+          sh.sun_order > 0 ? gauss_legendre(sh.sun_order) : QuadratureRule{}};
 }
 
 std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const SampleGrid& grid) {
@@ -165,7 +196,7 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
     if (times != nullptr) times->*stage += std::chrono::duration<double>(now - clock).count();
     clock = now;
   };
-  const std::vector<CascadeFields> fields = synthesize_ocean(*job.ocean, job.time, job.threads);
+  const FrameFields fields = frame_fields(job);
   lap(&RenderTimes::synthesis);
   RenderedImage image;
   image.width = job.camera.width;
@@ -177,7 +208,7 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const std::vector<Fragment> fragments = raster_pass(job, g, grid);
   lap(&RenderTimes::raster);
-  const Lighting light = lighting_of(job.sky);
+  const Lighting light = lighting_of(job.sky, job.shading);
   const auto pixels =
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   image.radiance.assign(pixels, Vec3{});
@@ -245,11 +276,11 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
 
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
                                      int pixel_x, int pixel_y) {
-  const std::vector<CascadeFields> fields = synthesize_ocean(*job.ocean, job.time, job.threads);
+  const FrameFields fields = frame_fields(job);
   const Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const std::vector<Fragment> fragments = raster_pass(job, g, grid);
-  const Lighting light = lighting_of(job.sky);
+  const Lighting light = lighting_of(job.sky, job.shading);
   std::vector<SampleProbe> out;
   const int s = job.samples_per_axis;
   for (int b = 0; b < s; ++b) {

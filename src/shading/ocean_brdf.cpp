@@ -118,14 +118,20 @@ BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const SurfaceFrame& f,
 
 double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const SurfaceFrame& f,
                      SlopeVariance s, int order, const BrdfOptions& options) {
-  const double solid_angle = 2.0 * kPi * (1.0 - std::cos(radius));
-  if (order <= 0) return ocean_brdf(sun, view, f, s, options).brdf_cos * solid_angle;
+  return reflected_sun(sun, radius, view, f, s,
+                       order > 0 ? gauss_legendre(order) : QuadratureRule{}, options);
+}
+
+double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const SurfaceFrame& f,
+                     SlopeVariance s, const QuadratureRule& r, const BrdfOptions& options) {
+  if (r.nodes.empty()) {
+    return ocean_brdf(sun, view, f, s, options).brdf_cos * 2.0 * kPi * (1.0 - std::cos(radius));
+  }
   // Orthonormal basis around the sun direction.
   const Vec3 u = normalized(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
                                                     : cross(sun, Vec3{1.0, 0.0, 0.0}));
   const Vec3 w = cross(sun, u);
-  const QuadratureRule r = gauss_legendre(order);
-  const int azimuths = 4 * order;
+  const int azimuths = 4 * static_cast<int>(r.nodes.size());
   double sum = 0.0;
   for (std::size_t i = 0; i < r.nodes.size(); ++i) {
     const double rho = 0.5 * radius * (r.nodes[i] + 1.0);  // [−1, 1] → [0, ρ]
@@ -143,7 +149,11 @@ double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const Sur
 
 double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, int order,
                     const BrdfOptions& options) {
-  const QuadratureRule g = gauss_hermite(order);
+  return mean_fresnel(view, f, s, gauss_hermite(order), options);
+}
+
+double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
+                    const QuadratureRule& g, const BrdfOptions& options) {
   const double vx = dot(view, f.tangent_x);
   const double vy = dot(view, f.tangent_y);
   const double vn = dot(view, f.normal);

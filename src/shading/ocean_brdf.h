@@ -13,6 +13,7 @@
 #include <array>
 
 #include "sky/color.h"
+#include "spectrum/quadrature.h"
 
 namespace oceanref {
 
@@ -80,11 +81,18 @@ BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const SurfaceFrame& fr
 double reflected_sun(const Vec3& sun, double sun_radius, const Vec3& view,
                      const SurfaceFrame& frame, SlopeVariance s, int order,
                      const BrdfOptions& options = {});
+// The same with the Gauss–Legendre rule given (empty: point sun), so a renderer builds it once.
+double reflected_sun(const Vec3& sun, double sun_radius, const Vec3& view,
+                     const SurfaceFrame& frame, SlopeVariance s, const QuadratureRule& disk,
+                     const BrdfOptions& options = {});
 
 // Mean Fresnel over the visible slopes: F̄ = ∫ F(V·m) ⟨V·ñ⟩₊ p dζ / (cos θ_V (1 + Λ_V)), ñ the
 // unnormalized facet normal, by Gauss–Hermite quadrature of the given order per axis.
 double mean_fresnel(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s, int order,
                     const BrdfOptions& options = {});
+// The same with the Gauss–Hermite rule given.
+double mean_fresnel(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s,
+                    const QuadratureRule& hermite, const BrdfOptions& options = {});
 // The demo's fit, as the demo uses it: F̄ ≈ 0.02 + 0.98·(1 − cos θ_V)^{5 exp(−2.69 σ_V)} /
 // (1 + 22.7 σ_V^1.5), σ_V² the slope variance along V (Bruneton's ocean demo, meanFresnel).
 double mean_fresnel_fit(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s);

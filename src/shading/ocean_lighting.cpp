@@ -15,10 +15,14 @@ double dot(const Vec3& a, const Vec3& b) {
 
 Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, const Sky& sky,
                    int order, const BrdfOptions& options) {
+  return reflected_sky(view, f, s, sky, gauss_hermite(order), options);
+}
+
+Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, const Sky& sky,
+                   const QuadratureRule& g, const BrdfOptions& options) {
   Vec3 sum{0.0, 0.0, 0.0};
   const double vn = dot(view, f.normal);
   if (!(vn > 0.0)) return sum;
-  const QuadratureRule g = gauss_hermite(order);
   const double vx = dot(view, f.tangent_x);
   const double vy = dot(view, f.tangent_y);
   const double sigma2_view = directional_slope_variance(view, f, s);

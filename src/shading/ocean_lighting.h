@@ -14,6 +14,9 @@ namespace oceanref {
 // quadrature of the given order per axis. Directions below the horizon see no sky.
 Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s, const Sky& sky,
                    int order, const BrdfOptions& options = {});
+// The same with the Gauss–Hermite rule given.
+Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s, const Sky& sky,
+                   const QuadratureRule& hermite, const BrdfOptions& options = {});
 // The demo's shortcut, a prefiltered sky texture read once: F̄ times the mean of L_sky over the
 // mirror directions of V about facets distributed by p(ζ) (no Fresnel, masking or visibility
 // weighting — what a filtered environment lookup holds), Gauss–Hermite of the given order.

@@ -46,7 +46,7 @@ Matrix3 xyz_to_linear_srgb_matrix() {
 }
 
 Vec3 xyz_to_linear_srgb(const Vec3& xyz) {
-  const Matrix3 m = xyz_to_linear_srgb_matrix();
+  static const Matrix3 m = xyz_to_linear_srgb_matrix();  // a constant, derived once
   Vec3 rgb{};
   for (std::size_t i = 0; i < 3; ++i)
     rgb[i] = m[i][0] * xyz[0] + m[i][1] * xyz[1] + m[i][2] * xyz[2];

@@ -104,21 +104,23 @@ Sky make_sky(double turbidity, double sun_zenith, double sun_azimuth) {
   s.zenith_luminance = zenith_luminance(turbidity, s.model_sun_zenith);
   s.zenith_x = zenith_chromaticity_x(turbidity, s.model_sun_zenith);
   s.zenith_y = zenith_chromaticity_y(turbidity, s.model_sun_zenith);
+  // γ is measured to the sun held at the horizon when it has set.
+  s.model_sun_direction =
+      direction_from_angles(s.model_sun_zenith, std::atan2(s.sun_direction[2], s.sun_direction[0]));
+  s.perez_at_zenith_luminance = perez(0.0, s.model_sun_zenith, s.luminance);
+  s.perez_at_zenith_x = perez(0.0, s.model_sun_zenith, s.x);
+  s.perez_at_zenith_y = perez(0.0, s.model_sun_zenith, s.y);
   return s;
 }
 
 Chromaticity sky_chromaticity(const Sky& sky, const Vec3& direction) {
   if (!(direction[1] > 0.0)) return {sky.zenith_x, sky.zenith_y, 0.0};
   const double theta = std::acos(std::fmin(direction[1], 1.0));
-  // γ to the sun as the model sees it (held at the horizon when it has set).
-  const Vec3 sun = direction_from_angles(sky.model_sun_zenith,
-                                         std::atan2(sky.sun_direction[2], sky.sun_direction[0]));
-  const double gamma = angle_between(direction, sun);
-  const double ts = sky.model_sun_zenith;
+  const double gamma = angle_between(direction, sky.model_sun_direction);
   return {
-      sky.zenith_x * perez(theta, gamma, sky.x) / perez(0.0, ts, sky.x),
-      sky.zenith_y * perez(theta, gamma, sky.y) / perez(0.0, ts, sky.y),
-      sky.zenith_luminance * perez(theta, gamma, sky.luminance) / perez(0.0, ts, sky.luminance)};
+      sky.zenith_x * perez(theta, gamma, sky.x) / sky.perez_at_zenith_x,
+      sky.zenith_y * perez(theta, gamma, sky.y) / sky.perez_at_zenith_y,
+      sky.zenith_luminance * perez(theta, gamma, sky.luminance) / sky.perez_at_zenith_luminance};
 }
 
 Vec3 sky_radiance_xyz(const Sky& sky, const Vec3& direction) {

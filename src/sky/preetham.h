@@ -49,6 +49,9 @@ struct Sky {
   double model_sun_zenith;  // min(θ_s, π/2): what the sky formulas use
   PerezCoefficients luminance, x, y;
   double zenith_luminance, zenith_x, zenith_y;
+  // Per-sky constants of eq. 3–4: the sun as the model sees it and F(0, θ_s) for Y, x, y.
+  Vec3 model_sun_direction;
+  double perez_at_zenith_luminance, perez_at_zenith_x, perez_at_zenith_y;
 };
 
 // Throws std::invalid_argument naming the parameter and its range.

@@ -27,12 +27,11 @@ AxisBasis axis_basis(int index, double position, double size, int n) {
   return {e, Complex(0.0, k) * e};
 }
 
-void add_pattern(const PatternSpectrum& s, double x, double z, double time, bool low_fields,
-                 std::array<Complex, kFieldCount>& sum) {
+void add_pattern(const PatternSpectrum& s, const std::vector<Complex>& h, double x, double z,
+                 bool low_fields, std::array<Complex, kFieldCount>& sum) {
   const Pattern& p = s.pattern;
   const int n = p.resolution;
   const double dk = wavenumber_spacing(p.size);
-  const std::vector<Complex> h = spectrum_at_time(s, time);
   for (int b = 0; b < n; ++b) {
     const int beta = wave_index(b, n);
     const AxisBasis bz = axis_basis(beta, z, p.size, n);
@@ -64,11 +63,21 @@ void add_pattern(const PatternSpectrum& s, double x, double z, double time, bool
 }
 }  // namespace
 
+EvolvedCascade evolve_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
+                              double time) {
+  return {spectrum_at_time(low, time), spectrum_at_time(high, time)};
+}
+
 std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const PatternSpectrum& high,
                                            double x, double z, double time) {
+  return direct_sum(low, high, evolve_cascade(low, high, time), x, z);
+}
+
+std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const PatternSpectrum& high,
+                                           const EvolvedCascade& h, double x, double z) {
   std::array<Complex, kFieldCount> sum{};
-  add_pattern(low, x, z, time, true, sum);
-  add_pattern(high, x, z, time, false, sum);
+  add_pattern(low, h.low, x, z, true, sum);
+  add_pattern(high, h.high, x, z, false, sum);
   std::array<double, kFieldCount> out{};
   for (std::size_t f = 0; f < out.size(); ++f) out[f] = sum[f].real();
   return out;

@@ -15,7 +15,18 @@
 
 namespace oceanref {
 
-// The raw fields (the order of kFieldNames) of one cascade at (x, z) [m] and time t [s].
+// h(k, t) of a cascade's two grids at one time: what the summation sums. A frame evaluates it
+// once and then sums at as many points as it needs.
+struct EvolvedCascade {
+  std::vector<Complex> low;
+  std::vector<Complex> high;
+};
+EvolvedCascade evolve_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time);
+
+// The raw fields (the order of kFieldNames) of one cascade at (x, z) [m].
+std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const PatternSpectrum& high,
+                                           const EvolvedCascade& h, double x, double z);
+// The same at time t [s] for a single point.
 std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const PatternSpectrum& high,
                                            double x, double z, double time);
 

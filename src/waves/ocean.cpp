@@ -123,9 +123,10 @@ std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, doubl
   return raw;
 }
 
-PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fields, double x,
-                       double z, double time, Interpolation mode) {
-  if (mode == Interpolation::direct) return combine_direct(ocean, x, z, time);
+PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                       const std::vector<EvolvedCascade>& evolved, double x, double z,
+                       Interpolation mode) {
+  if (mode == Interpolation::direct) return combine_direct(ocean, evolved, x, z);
   PointFields sum;
   for (std::size_t i = 0; i < fields.size(); ++i) {
     add_cascade(sum, cascade_from_grids(fields[i], x, z, mode), ocean.cascades[i].choppiness);
@@ -144,18 +145,27 @@ double height_bound(const Ocean& ocean) {
 
 PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                double x, double z) {
-  PointFields sum;
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    add_cascade(sum, cascade_from_grids(fields[i], x, z), ocean.cascades[i].choppiness);
+  return combine_at(ocean, fields, {}, x, z, Interpolation::bilinear);
+}
+
+std::vector<EvolvedCascade> evolve_ocean(const Ocean& ocean, double time) {
+  std::vector<EvolvedCascade> evolved;
+  for (const CascadeSpectra& c : ocean.cascades) {
+    evolved.push_back(evolve_cascade(c.low, c.high, time));
   }
-  finish_combination(sum);
-  return sum;
+  return evolved;
 }
 
 PointFields combine_direct(const Ocean& ocean, double x, double z, double time) {
+  return combine_direct(ocean, evolve_ocean(ocean, time), x, z);
+}
+
+PointFields combine_direct(const Ocean& ocean, const std::vector<EvolvedCascade>& evolved, double x,
+                           double z) {
   PointFields sum;
-  for (const CascadeSpectra& c : ocean.cascades) {
-    add_cascade(sum, direct_sum(c.low, c.high, x, z, time), c.choppiness);
+  for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
+    const CascadeSpectra& c = ocean.cascades[i];
+    add_cascade(sum, direct_sum(c.low, c.high, evolved[i], x, z), c.choppiness);
   }
   finish_combination(sum);
   return sum;

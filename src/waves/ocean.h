@@ -8,6 +8,7 @@
 
 #include "spectrum/model.h"
 #include "waves/cascades.h"
+#include "waves/direct_sum.h"
 #include "waves/fields.h"
 #include "waves/realization.h"
 
@@ -62,17 +63,24 @@ double sample_periodic(const std::vector<double>& grid, int resolution, double s
 double sample_periodic_bicubic(const std::vector<double>& grid, int resolution, double size,
                                double x, double z);
 
+// h(k, t) of every cascade, for direct summation at many points of one frame.
+std::vector<EvolvedCascade> evolve_ocean(const Ocean& ocean, double time);
+
 // The combined fields at (x, z) from the FFT grids (bilinear between nodes) and by direct
-// summation over every component of every cascade.
+// summation over every component of every cascade (at time t, or from evolve_ocean).
 PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                double x, double z);
 PointFields combine_direct(const Ocean& ocean, double x, double z, double time);
+PointFields combine_direct(const Ocean& ocean, const std::vector<EvolvedCascade>& evolved, double x,
+                           double z);
 // The raw fields of one cascade at (x, z) from its FFT grids.
 std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z,
                                                    Interpolation mode = Interpolation::bilinear);
-// The combined fields at (x, z) and time t with the chosen interpolation (direct: summation).
-PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fields, double x,
-                       double z, double time, Interpolation mode);
+// The combined fields at (x, z) with the chosen interpolation; `direct` sums `evolved` (from
+// evolve_ocean, which the other modes do not read).
+PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                       const std::vector<EvolvedCascade>& evolved, double x, double z,
+                       Interpolation mode);
 // Σ|h0| over every cascade: a bound of |η| at any point and time (|h(k, t)| ≤ ½(|h0(k)| +
 // |h0(−k)|)), and of |D| per unit choppiness.
 double height_bound(const Ocean& ocean);
