@@ -1,13 +1,10 @@
 #include "cli/fields_command.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <ostream>
 #include <string>
-#include <thread>
 
 #include "cli/text.h"
 #include "io/exr.h"
@@ -23,11 +20,6 @@ struct FieldsFlags {
   int threads = 0;
 };
 
-// Progress on stderr, only for a terminal (pipes and CI logs stay clean).
-void progress(const std::string& message) {
-  if (isatty(STDERR_FILENO)) std::cerr << "oceanref fields: " << message << '\n';
-}
-
 std::vector<float> to_float(const std::vector<double>& v) {
   return std::vector<float>(v.begin(), v.end());
 }
@@ -35,7 +27,8 @@ std::vector<float> to_float(const std::vector<double>& v) {
 }  // namespace
 
 ExrImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
-  progress("synthesizing " + std::to_string(ocean.cascades.size()) + " cascades");
+  progress("oceanref fields",
+           "synthesizing " + std::to_string(ocean.cascades.size()) + " cascades");
   const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, threads);
   const int n = scene.waves.resolution;
   ExrImage image;
@@ -59,7 +52,8 @@ ExrImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
   std::vector<PointFields> sum = combine_on_footprint(ocean, fields, threads);
   // Foam of a sequence: the indicator accumulated over the earlier frames (listing 2.4).
   if (scene.foam.steps > 0) {
-    progress("accumulating foam over " + std::to_string(scene.foam.steps) + " earlier frames");
+    progress("oceanref fields",
+             "accumulating foam over " + std::to_string(scene.foam.steps) + " earlier frames");
     const AccumulatedFoam foam = accumulate_foam(ocean, scene.time, scene.foam, threads);
     for (std::size_t i = 0; i < fields.size(); ++i) {
       for (ExrChannel& c : image.channels) {
@@ -100,7 +94,7 @@ namespace {
 void write_fields_exr(const std::string& path, const Scene& scene, const Ocean& ocean,
                       int threads) {
   const ExrImage image = fields_image(scene, ocean, threads);
-  progress("writing " + path);
+  progress("oceanref fields", "writing " + path);
   write_exr(path, image);
 }
 
@@ -165,13 +159,7 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
     if (flags->output.empty() && flags->at.empty()) {
       throw UsageError("fields", "give -o OUT.exr or --at x,z");
     }
-    if (flags->threads < 0 || flags->threads > 1024) {
-      throw UsageError("--threads", "must be in [0, 1024] (0: all cores), got " +
-                                        std::to_string(flags->threads));
-    }
-    const int threads = flags->threads > 0
-                            ? flags->threads
-                            : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = resolve_threads(flags->threads);
     Scene scene = load_scene(flags->scene);
     if (!flags->time.empty()) {
       scene.time = parse_number("--time", flags->time);
@@ -179,7 +167,7 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
         throw UsageError("--time", "must be in [-1e7, 1e7] s, got " + flags->time);
       }
     }
-    progress("realizing the spectrum");
+    progress("oceanref fields", "realizing the spectrum");
     const Ocean ocean = realize_ocean(scene.waves, threads);
     if (!flags->output.empty()) {
       write_fields_exr(flags->output, scene, ocean, threads);

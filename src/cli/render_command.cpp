@@ -9,7 +9,6 @@
 #include <memory>
 #include <ostream>
 #include <string>
-#include <thread>
 
 #include "cli/text.h"
 #include "io/exr.h"
@@ -22,19 +21,6 @@ namespace oceanref::cli {
 
 namespace {
 constexpr const char* kVersion = "oceanref 0.1.0";
-
-void progress(const std::string& message) {
-  if (isatty(STDERR_FILENO)) std::cerr << "oceanref: " << message << '\n';
-}
-
-int resolve_threads_in_range(int requested) {
-  if (requested < 0 || requested > 1024) {
-    throw UsageError("--threads",
-                     "must be in [0, 1024] (0: all cores), got " + std::to_string(requested));
-  }
-  return requested > 0 ? requested
-                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
 
 struct Prepared {
   Scene scene;
@@ -53,7 +39,7 @@ std::unique_ptr<Prepared> prepare(const std::string& path, int threads, int spp)
     }
     p->scene.image.samples_per_axis = axis;
   }
-  progress("realizing the wave spectrum");
+  progress("oceanref", "realizing the wave spectrum");
   p->ocean = realize_ocean(p->scene.waves, threads);
   p->unresolved = unresolved_slope_variance(p->ocean, p->scene.waves);
   p->job = scene_render_job(p->scene, p->ocean, threads);
@@ -104,16 +90,13 @@ void write_preview(const std::string& path, const RenderedImage& image, const Im
 }
 }  // namespace
 
-int resolve_threads(int requested) {
-  return resolve_threads_in_range(requested);
-}
-
 RenderedScene render_scene(const std::string& path, int threads, int spp, bool aov,
                            bool show_progress) {
   const auto p = prepare(path, threads, spp);
-  progress("rendering " + std::to_string(p->scene.image.width) + "x" +
-           std::to_string(p->scene.image.height) + " at " +
-           std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) + " spp");
+  progress("oceanref", "rendering " + std::to_string(p->scene.image.width) + "x" +
+                           std::to_string(p->scene.image.height) + " at " +
+                           std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) +
+                           " spp");
   if (show_progress) {
     p->job.progress = [](double share) {
       const int width = 40;
@@ -178,11 +161,11 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
       "sun.RGB, sky.RGB, sea.RGB, foam.RGB");
   return [f](std::ostream& out) {
-    const RenderedScene r = render_scene(f->scene, resolve_threads_in_range(f->threads), f->spp,
-                                         f->aov, isatty(STDERR_FILENO));
+    const RenderedScene r =
+        render_scene(f->scene, resolve_threads(f->threads), f->spp, f->aov, isatty(STDERR_FILENO));
     const ExrImage& exr = r.exr;
     const std::string& hash = r.pixel_sha256;
-    progress("writing " + f->output);
+    progress("oceanref", "writing " + f->output);
     write_exr(f->output, exr);
     if (!f->png.empty()) write_preview(f->png, r.image, r.settings);
     out << "pixel_sha256," << hash << '\n';
@@ -203,7 +186,7 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
   cmd->add_option("--pixel", f->pixel, "x,y (column, row from the top-left)")->required();
   cmd->add_option("--threads", f->threads, "worker threads (default: all cores)");
   return [f](std::ostream& out) {
-    const int threads = resolve_threads_in_range(f->threads);
+    const int threads = resolve_threads(f->threads);
     const std::vector<double> xy = parse_number_list("--pixel", f->pixel);
     const auto p = prepare(f->scene, threads, 0);
     if (xy.size() != 2 || xy[0] < 0 || xy[1] < 0 || xy[0] >= p->scene.image.width ||

@@ -21,8 +21,6 @@ struct RenderedScene {
 };
 RenderedScene render_scene(const std::string& path, int threads, int spp, bool aov,
                            bool show_progress);
-// --threads: 0 means all cores; throws UsageError outside [0, 1024].
-int resolve_threads(int requested);
 
 std::function<void(std::ostream& out)> add_render_command(CLI::App& app);
 std::function<void(std::ostream& out)> add_probe_command(CLI::App& app);

@@ -1,9 +1,14 @@
 #include "cli/text.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
+#include <thread>
 
 namespace oceanref::cli {
 
@@ -45,6 +50,19 @@ std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_vie
   const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   if (!(length > 0.0)) throw UsageError(flag, "the vector must not be zero");
   return {v[0] / length, v[1] / length, v[2] / length};
+}
+
+int resolve_threads(int requested) {
+  if (requested < 0 || requested > 1024) {
+    throw UsageError("--threads",
+                     "must be in [0, 1024] (0: all cores), got " + std::to_string(requested));
+  }
+  return requested > 0 ? requested
+                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+void progress(std::string_view who, const std::string& message) {
+  if (isatty(STDERR_FILENO)) std::cerr << who << ": " << message << '\n';
 }
 
 }  // namespace oceanref::cli

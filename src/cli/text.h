@@ -24,6 +24,11 @@ class UsageError : public std::invalid_argument {
 // and the exit status is 1.
 struct CheckFailed {};
 
+// --threads: 0 means all cores; throws UsageError outside [0, 1024].
+int resolve_threads(int requested);
+// "<who>: <message>" on stderr, only when it is a terminal (pipes and CI logs stay clean).
+void progress(std::string_view who, const std::string& message);
+
 // The whole text must be one finite number ("inf" accepted when allow_infinity).
 double parse_number(const std::string& flag, std::string_view text, bool allow_infinity = false);
 // Comma-separated finite numbers, at least one.
