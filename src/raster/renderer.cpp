@@ -128,14 +128,16 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
   }
   const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   const SlopeVariance s{unresolved.upwind, unresolved.crosswind};
-  p.mean_fresnel = mean_fresnel(p.view, frame, s, light.hermite, sh.brdf);
   if (sh.sun) {
     const double reflectance = reflected_sun(light.sun_direction, kSunAngularRadius, p.view, frame,
                                              s, light.disk, sh.brdf);
     for (std::size_t c = 0; c < 3; ++c) p.sun[c] = reflectance * light.sun_radiance[c];
   }
   if (sh.sky) p.sky = reflected_sky(p.view, frame, s, job.sky, light.hermite, sh.brdf);
-  if (sh.sea) p.sea = refracted_sea(p.mean_fresnel, sh.sea_colour, light.sky_irradiance);
+  if (sh.sea) {
+    p.mean_fresnel = mean_fresnel(p.view, frame, s, light.hermite, sh.brdf);
+    p.sea = refracted_sea(p.mean_fresnel, sh.sea_colour, light.sky_irradiance);
+  }
   for (std::size_t c = 0; c < 3; ++c) p.radiance[c] = p.sun[c] + p.sky[c] + p.sea[c];
   if (sh.whitecaps) {
     // Per-sample indicator; the S×S samples of a pixel give its footprint coverage.
