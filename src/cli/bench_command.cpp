@@ -1,5 +1,7 @@
 #include "cli/bench_command.h"
 
+#include "core/math.h"
+
 #include <fftw3.h>
 
 #include <algorithm>
@@ -49,8 +51,8 @@ void inverse_fft_2d_fftw(std::vector<Complex>& data, int n, int threads) {
     fftw_complex* out = fftw_alloc_complex(stride);
     Complex* values = &data[static_cast<std::size_t>(row) * stride];
     for (std::size_t j = 0; j < stride; ++j) {
-      line[j][0] = values[j].real();
-      line[j][1] = values[j].imag();
+      line[j][0] = values[j].re;
+      line[j][1] = values[j].im;
     }
     fftw_execute_dft(plan, line, out);
     for (std::size_t j = 0; j < stride; ++j) values[j] = Complex(out[j][0], out[j][1]);
@@ -66,8 +68,8 @@ void inverse_fft_2d_fftw(std::vector<Complex>& data, int n, int threads) {
     for (std::size_t r = 0; r < stride; ++r) {
       for (std::size_t c = 0; c < count; ++c) {
         const Complex v = data[r * stride + static_cast<std::size_t>(first) + c];
-        in[c * stride + r][0] = v.real();
-        in[c * stride + r][1] = v.imag();
+        in[c * stride + r][0] = v.re;
+        in[c * stride + r][1] = v.im;
       }
     }
     for (std::size_t c = 0; c < count; ++c)
@@ -127,6 +129,16 @@ Run time_pipeline(const Ocean& ocean, const Flags& f, InverseFft2d fft) {
   return run;
 }
 
+struct ComplexF {
+  float re, im;
+};
+ComplexF to_float(Complex a) {
+  return {static_cast<float>(a.re), static_cast<float>(a.im)};
+}
+ComplexF multiply(ComplexF a, ComplexF b) {
+  return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re};
+}
+
 // One field of one pattern computed entirely in float (the arithmetic of a GPU shader):
 // h(k, t) with float phases, float multipliers and an FFTW float transform.
 std::vector<float> float_field(const PatternSpectrum& s, double time, Field field) {
@@ -140,15 +152,18 @@ std::vector<float> float_field(const PatternSpectrum& s, double time, Field fiel
       const std::size_t ic =
           grid_offset(conjugate_array_index(a, n), conjugate_array_index(b, n), n);
       const float phase = static_cast<float>(s.omega[i]) * static_cast<float>(time);
-      const std::complex<float> forward(std::cos(phase), -std::sin(phase));
-      const std::complex<float> h0(s.h0[i]);
-      const std::complex<float> h0c(s.h0[ic]);
-      const std::complex<float> h = 0.5f * (h0 * forward + std::conj(h0c * forward));
-      const Complex m = field_multiplier(field, wave_index(a, n), wave_index(b, n), dk,
-                                         s.inverse_wavenumber[i], n);
-      const std::complex<float> v = std::complex<float>(m) * h;
-      c[i][0] = v.real();
-      c[i][1] = v.imag();
+      // A shader's float cos/sin: the portable double value rounded to float.
+      const math::SinCos e = math::sincos(static_cast<double>(phase));
+      const ComplexF forward{static_cast<float>(e.cos), -static_cast<float>(e.sin)};
+      const ComplexF a0 = multiply(to_float(s.h0[i]), forward);
+      const ComplexF b0 = multiply(to_float(s.h0[ic]), forward);
+      const ComplexF h{0.5f * (a0.re + b0.re), 0.5f * (a0.im - b0.im)};  // ½(a + b*)
+      const ComplexF v =
+          multiply(to_float(field_multiplier(field, wave_index(a, n), wave_index(b, n), dk,
+                                             s.inverse_wavenumber[i], n)),
+                   h);
+      c[i][0] = v.re;
+      c[i][1] = v.im;
     }
   }
   fftwf_execute(plan);
@@ -262,7 +277,7 @@ void bench_lighting(std::ostream& out, int order) {
   for (double c = 0.0; c <= 1.0 + 1e-12; c += 0.001) {
     schlick.add(fresnel_reflectance(c, FresnelForm::schlick), fresnel_reflectance(c));
   }
-  for (double x = 0.001; x <= 10.0; x += 0.001) erfc_rational.add(rational_erfc(x), std::erfc(x));
+  for (double x = 0.001; x <= 10.0; x += 0.001) erfc_rational.add(rational_erfc(x), math::erfc(x));
   const Sky sky = make_sky(2.5, 40.0 * deg, 0.0);
   const Vec3 sun = sky.sun_direction;
   const SurfaceFrame frame = wind_frame({0.0, 1.0, 0.0}, 0.0);
@@ -459,7 +474,7 @@ void bench_study(std::ostream& out, const std::string& path, int threads) {
           for (int b = 0; b < res; ++b) {
             for (int a = 0; a < res; ++a) {
               const double kx = wave_index(a, res) * dk, kz = wave_index(b, res) * dk;
-              const double k = std::hypot(kx, kz);
+              const double k = math::hypot(kx, kz);
               if (!(k > 0.0) || !c.high.pattern.band.contains(k)) continue;
               const double e = wavevector_spectrum(s, kx, kz) * dk * dk;
               m0 += e;

@@ -1,5 +1,7 @@
 #include "cli/brdf_command.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -88,8 +90,8 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
     } else if (f->erfc != "exact") {
       throw UsageError("--erfc", "expected exact or rational, got '" + f->erfc + "'");
     }
-    const double sun_zenith = std::acos(std::fmin(std::fmax(sun[1], -1.0), 1.0));
-    const Sky sky = make_sky(turbidity, sun_zenith, std::atan2(sun[2], sun[0]));
+    const double sun_zenith = math::acos(std::fmin(std::fmax(sun[1], -1.0), 1.0));
+    const Sky sky = make_sky(turbidity, sun_zenith, math::atan2(sun[2], sun[0]));
     const SurfaceFrame frame = wind_frame(normal, wind * std::numbers::pi / 180.0);
     const SlopeVariance s{s2[0], s2[1]};
     const BrdfTerms t = ocean_brdf(sun, view, frame, s, options);

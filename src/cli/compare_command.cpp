@@ -1,5 +1,6 @@
 #include "cli/compare_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <set>
 #include <string>
 
 #include "cli/fields_command.h"
@@ -40,11 +42,7 @@ std::string channels_hash(const ExrImage& image) {
   for (const ExrChannel* c : sorted) {
     bytes.insert(bytes.end(), c->name.begin(), c->name.end());
     bytes.push_back(0);
-    for (const float v : c->values) {
-      std::uint32_t bits = 0;
-      std::memcpy(&bits, &v, sizeof bits);
-      for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * b)));
-    }
+    for (const float v : c->values) append_bytes(bytes, v);
   }
   return sha256_hex(bytes);
 }
@@ -95,6 +93,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
 std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
   struct Flags {
     std::string root = "reference";
+    std::string only;
     int threads = 0;
     bool yes = false;
   };
@@ -111,6 +110,7 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
   for (CLI::App* sub : {verify, update}) {
     sub->add_option("--root", f->root, "the reference folder")->capture_default_str();
     sub->add_option("--threads", f->threads, "worker threads (default: all cores)");
+    sub->add_option("--only", f->only, "NAME,NAME,…: just these scenes of the manifest");
   }
   update->add_flag("--yes", f->yes, "required: really rewrite reference/golden");
   return [f, verify, update](std::ostream& out) {
@@ -128,25 +128,45 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
       throw UsageError("--root", manifest_path.string() + ": not valid JSON: " + e.what());
     }
     const int threads = resolve_threads(f->threads);
+    std::set<std::string> only;
+    for (std::size_t start = 0; !f->only.empty() && start <= f->only.size();) {
+      const std::size_t comma = std::min(f->only.find(',', start), f->only.size());
+      only.insert(f->only.substr(start, comma - start));
+      start = comma + 1;
+    }
+    for (const std::string& name : only) {
+      const auto& entries = manifest.at("entries");
+      if (std::none_of(entries.begin(), entries.end(),
+                       [&](const auto& e) { return e.at("name") == name; })) {
+        throw UsageError("--only", "no scene named '" + name + "' in " + manifest_path.string());
+      }
+    }
     int mismatches = 0;
     out << "name,status,pixel_sha256\n";
     for (auto& entry : manifest.at("entries")) {
       const std::string name = entry.at("name").get<std::string>();
+      if (!only.empty() && !only.contains(name)) continue;
       const std::filesystem::path scene_path = root / entry.at("scene").get<std::string>();
       const RenderedScene r = render_scene(scene_path.string(), threads, 0, false, false);
       const Scene scene = load_scene(scene_path.string());
       const Ocean ocean = realize_ocean(scene.waves, threads);
-      const ExrImage fields = fields_image(scene, ocean, threads);
+      const FieldsImage fields_output = fields_image(scene, ocean, threads);
+      const ExrImage& fields = fields_output.exr;
       const std::string fields_hash = channels_hash(fields);
       const std::filesystem::path image_path = root / "golden" / (name + ".exr");
       const std::filesystem::path fields_path = root / "golden" / (name + ".fields.exr");
+      // Identity on the float32 outputs and on the double buffers behind them.
       const bool same = entry.value("pixel_sha256", "") == r.pixel_sha256 &&
-                        entry.value("fields_sha256", "") == fields_hash;
+                        entry.value("radiance_f64_sha256", "") == r.radiance_f64_sha256 &&
+                        entry.value("fields_sha256", "") == fields_hash &&
+                        entry.value("fields_f64_sha256", "") == fields_output.f64_sha256;
       if (update->parsed()) {
         write_exr(image_path.string(), r.exr);
         write_exr(fields_path.string(), fields);
         entry["pixel_sha256"] = r.pixel_sha256;
         entry["fields_sha256"] = fields_hash;
+        entry["radiance_f64_sha256"] = r.radiance_f64_sha256;
+        entry["fields_f64_sha256"] = fields_output.f64_sha256;
         entry["scene_sha256"] = sha256_hex(scene.canonical);
         entry["width"] = r.exr.width;
         entry["height"] = r.exr.height;
@@ -157,6 +177,15 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
       out << name << ',' << (same ? "identical" : "MISMATCH") << ',' << r.pixel_sha256 << '\n';
       if (!same) {
         ++mismatches;
+        out << "# differs:";
+        for (const auto& [key, value] :
+             {std::pair{"pixel_sha256", r.pixel_sha256},
+              std::pair{"radiance_f64_sha256", r.radiance_f64_sha256},
+              std::pair{"fields_sha256", fields_hash},
+              std::pair{"fields_f64_sha256", fields_output.f64_sha256}}) {
+          if (entry.value(key, "") != value) out << ' ' << key;
+        }
+        out << '\n';
         try {
           write_metrics(out, compare_images(read_exr(image_path.string()), r.exr, {}));
         } catch (const std::exception& e) {

@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <ostream>
 #include <string>
 
 #include "cli/text.h"
 #include "io/exr.h"
+#include "io/sha256.h"
 #include "scene/scene.h"
 #include "waves/direct_sum.h"
 #include "waves/ocean.h"
@@ -26,12 +28,18 @@ std::vector<float> to_float(const std::vector<double>& v) {
 
 }  // namespace
 
-ExrImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
+FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
   progress("oceanref fields",
            "synthesizing " + std::to_string(ocean.cascades.size()) + " cascades");
   const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, threads);
   const int n = scene.waves.resolution;
   ExrImage image;
+  std::map<std::string, std::vector<double>> exact;  // the doubles behind each channel
+  const auto add_channel = [&](const std::string& name, int sampling,
+                               const std::vector<double>& values) {
+    image.channels.push_back({name, sampling, to_float(values)});
+    exact[name] = values;
+  };
   image.width = n;
   image.height = n;
   std::string sizes;
@@ -40,14 +48,14 @@ ExrImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
     sizes += (i ? "," : "") + format_number(fields[i].size);
     for (int q = 0; q < kFieldCount; ++q) {
       const int sampling = is_low_resolution_field(Field(q)) ? n / fields[i].low_resolution : 1;
-      image.channels.push_back({prefix + std::string(kFieldNames[static_cast<std::size_t>(q)]),
-                                sampling, to_float(fields[i].values[static_cast<std::size_t>(q)])});
+      add_channel(prefix + std::string(kFieldNames[static_cast<std::size_t>(q)]), sampling,
+                  fields[i].values[static_cast<std::size_t>(q)]);
     }
     const std::vector<double> jacobian = cascade_jacobian(fields[i], ocean.cascades[i].choppiness);
     std::vector<double> foam(jacobian.size());
     for (std::size_t c = 0; c < foam.size(); ++c) foam[c] = jacobian[c] < 0.0 ? 1.0 : 0.0;
-    image.channels.push_back({prefix + "jacobian", 1, to_float(jacobian)});
-    image.channels.push_back({prefix + "foam", 1, to_float(foam)});
+    add_channel(prefix + "jacobian", 1, jacobian);
+    add_channel(prefix + "foam", 1, foam);
   }
   std::vector<PointFields> sum = combine_on_footprint(ocean, fields, threads);
   // Foam of a sequence: the indicator accumulated over the earlier frames (listing 2.4).
@@ -56,28 +64,29 @@ ExrImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
              "accumulating foam over " + std::to_string(scene.foam.steps) + " earlier frames");
     const AccumulatedFoam foam = accumulate_foam(ocean, scene.time, scene.foam, threads);
     for (std::size_t i = 0; i < fields.size(); ++i) {
+      const std::string name = "c" + std::to_string(i) + ".foam";
       for (ExrChannel& c : image.channels) {
-        if (c.name == "c" + std::to_string(i) + ".foam") c.values = to_float(foam.cascades[i]);
+        if (c.name == name) c.values = to_float(foam.cascades[i]);
       }
+      exact[name] = foam.cascades[i];
     }
     for (std::size_t c = 0; c < sum.size(); ++c) sum[c].foam = foam.combined[c];
   }
   const auto sum_channel = [&](const char* name, double PointFields::*member) {
-    std::vector<float> v(sum.size());
-    for (std::size_t i = 0; i < sum.size(); ++i) v[i] = static_cast<float>(sum[i].*member);
-    image.channels.push_back({std::string("sum.") + name, 1, std::move(v)});
+    std::vector<double> v(sum.size());
+    for (std::size_t i = 0; i < sum.size(); ++i) v[i] = sum[i].*member;
+    add_channel(std::string("sum.") + name, 1, v);
   };
   sum_channel("height", &PointFields::height);
   sum_channel("slope_x", &PointFields::slope_x);
   sum_channel("slope_z", &PointFields::slope_z);
   sum_channel("jacobian", &PointFields::jacobian);
   for (int axis = 0; axis < 3; ++axis) {  // n = (−s_x, 1, −s_z)/‖·‖ (Gamper §4.3)
-    std::vector<float> v(sum.size());
+    std::vector<double> v(sum.size());
     for (std::size_t i = 0; i < sum.size(); ++i) {
-      v[i] = static_cast<float>(
-          surface_normal(sum[i].slope_x, sum[i].slope_z)[static_cast<std::size_t>(axis)]);
+      v[i] = surface_normal(sum[i].slope_x, sum[i].slope_z)[static_cast<std::size_t>(axis)];
     }
-    image.channels.push_back({std::string("sum.normal_") + "xyz"[axis], 1, std::move(v)});
+    add_channel(std::string("sum.normal_") + "xyz"[axis], 1, v);
   }
   sum_channel("foam", &PointFields::foam);
   image.attributes["oceanref.cascade_sizes_m"] = sizes;
@@ -87,13 +96,19 @@ ExrImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
       "sample (m, n) at x = m L/N, z = n L/N (EXR column m, row n); c<i>.height, disp_x, disp_z "
       "are subsampled by N_h/N_l; sum.* covers cascade 0 (L_0), other cascades sampled "
       "bilinearly; lengths in m, slopes and Jacobian dimensionless";
-  return image;
+  std::vector<std::uint8_t> bytes;
+  for (const auto& [name, values] : exact) {  // std::map: name order
+    bytes.insert(bytes.end(), name.begin(), name.end());
+    bytes.push_back(0);
+    for (const double v : values) append_bytes(bytes, v);
+  }
+  return {std::move(image), sha256_hex(bytes)};
 }
 
 namespace {
 void write_fields_exr(const std::string& path, const Scene& scene, const Ocean& ocean,
                       int threads) {
-  const ExrImage image = fields_image(scene, ocean, threads);
+  const ExrImage image = fields_image(scene, ocean, threads).exr;
   progress("oceanref fields", "writing " + path);
   write_exr(path, image);
 }

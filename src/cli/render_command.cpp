@@ -51,11 +51,19 @@ std::string pixel_hash(const std::vector<ExrChannel>& rgb) {
   std::vector<std::uint8_t> bytes;
   bytes.reserve(rgb[0].values.size() * 12);
   for (std::size_t i = 0; i < rgb[0].values.size(); ++i) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      std::uint32_t bits = 0;
-      std::memcpy(&bits, &rgb[c].values[i], sizeof bits);
-      for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * b)));
-    }
+    for (std::size_t c = 0; c < 3; ++c) append_bytes(bytes, rgb[c].values[i]);
+  }
+  return sha256_hex(bytes);
+}
+
+// SHA-256 of the double-precision radiance before the float32 conversion: R, G, B as binary64
+// little-endian, pixels row-major. A one-ulp change anywhere in the pipeline that the float32
+// rounding would hide still changes this hash.
+std::string radiance_hash(const std::vector<Vec3>& radiance) {
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(radiance.size() * 24);
+  for (const Vec3& v : radiance) {
+    for (const double c : v) append_bytes(bytes, c);
   }
   return sha256_hex(bytes);
 }
@@ -116,6 +124,7 @@ RenderedScene render_scene(const std::string& path, int threads, int spp, bool a
   exr.height = image.height;
   exr.channels = channels_of("", image.radiance);
   r.pixel_sha256 = pixel_hash(exr.channels);
+  r.radiance_f64_sha256 = radiance_hash(image.radiance);
   if (aov) {
     for (const auto& [name, layer] :
          {std::pair{"sun.", &image.sun}, std::pair{"sky.", &image.sky},
@@ -134,6 +143,7 @@ RenderedScene render_scene(const std::string& path, int threads, int spp, bool a
   exr.attributes["oceanref.seed"] = std::to_string(p->scene.seed);
   exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
   exr.attributes["oceanref.pixel_sha256"] = r.pixel_sha256;
+  exr.attributes["oceanref.radiance_f64_sha256"] = r.radiance_f64_sha256;
   exr.attributes["oceanref.unresolved_slope_variance"] =
       format_number(image.unresolved.upwind) + "," + format_number(image.unresolved.crosswind);
   return r;
@@ -169,6 +179,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     write_exr(f->output, exr);
     if (!f->png.empty()) write_preview(f->png, r.image, r.settings);
     out << "pixel_sha256," << hash << '\n';
+    out << "radiance_f64_sha256," << r.radiance_f64_sha256 << '\n';
   };
 }
 

@@ -15,7 +15,8 @@ namespace oceanref::cli {
 // A scene file rendered to the EXR that `render` writes (attributes included) and its pixel hash.
 struct RenderedScene {
   ExrImage exr;
-  std::string pixel_sha256;
+  std::string pixel_sha256;         // the float32 pixels as written
+  std::string radiance_f64_sha256;  // the double radiance behind them
   RenderedImage image;
   ImageSettings settings;
 };

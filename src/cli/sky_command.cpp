@@ -1,5 +1,7 @@
 #include "cli/sky_command.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -52,14 +54,14 @@ void write_hemisphere(const std::string& path, const Sky& sky, int n, Transmitta
   std::vector<float> g(r.size()), b(r.size()), y(r.size());
   const Vec3 sun = sun_radiance_rgb(sky, form);
   const double sun_luminance = sun_radiance_xyz(sky, form)[1];
-  const double cos_sun_radius = std::cos(kSunAngularRadius);
+  const double cos_sun_radius = math::cos(kSunAngularRadius);
   for (int row = 0; row < n; ++row) {
     for (int column = 0; column < n; ++column) {
       const double u = (2.0 * column + 1.0) / n - 1.0;
       const double v = (2.0 * row + 1.0) / n - 1.0;
       const double radius = std::sqrt(u * u + v * v);
       if (radius > 1.0) continue;
-      const Vec3 d = direction_from_angles(0.5 * std::numbers::pi * radius, std::atan2(v, u));
+      const Vec3 d = direction_from_angles(0.5 * std::numbers::pi * radius, math::atan2(v, u));
       Vec3 rgb = sky_radiance_rgb(sky, d);
       double luminance = sky_chromaticity(sky, d).Y;
       const Vec3& s = sky.sun_direction;

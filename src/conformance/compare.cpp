@@ -1,5 +1,7 @@
 #include "conformance/compare.h"
 
+#include "core/math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -76,7 +78,7 @@ Comparison compare_images(const ExrImage& golden, const ExrImage& candidate,
     m.rmse =
         std::sqrt(sum_squares / static_cast<double>(std::max<std::size_t>(1, a.values.size())));
     m.psnr =
-        m.rmse > 0.0 ? 20.0 * std::log10(peak / m.rmse) : std::numeric_limits<double>::infinity();
+        m.rmse > 0.0 ? 20.0 * math::log10(peak / m.rmse) : std::numeric_limits<double>::infinity();
     m.failing_share =
         static_cast<double>(fails) / static_cast<double>(std::max<std::size_t>(1, a.values.size()));
     if (m.failing_share > t.allowed_share) result.pass = false;

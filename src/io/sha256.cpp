@@ -1,6 +1,7 @@
 #include "io/sha256.h"
 
 #include <array>
+#include <bit>
 #include <cstdio>
 
 namespace oceanref {
@@ -69,6 +70,16 @@ std::string sha256_hex(const std::vector<std::uint8_t>& input) {
 
 std::string sha256_hex(const std::string& data) {
   return sha256_hex(std::vector<std::uint8_t>(data.begin(), data.end()));
+}
+
+void append_bytes(std::vector<std::uint8_t>& bytes, float v) {
+  const auto bits = std::bit_cast<std::uint32_t>(v);
+  for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * b)));
+}
+
+void append_bytes(std::vector<std::uint8_t>& bytes, double v) {
+  const auto bits = std::bit_cast<std::uint64_t>(v);
+  for (int b = 0; b < 8; ++b) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * b)));
 }
 
 }  // namespace oceanref

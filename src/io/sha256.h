@@ -11,4 +11,8 @@ namespace oceanref {
 std::string sha256_hex(const std::vector<std::uint8_t>& data);
 std::string sha256_hex(const std::string& data);
 
+// Appends a value's IEEE-754 bits, little-endian (the byte order every hash here uses).
+void append_bytes(std::vector<std::uint8_t>& bytes, float v);
+void append_bytes(std::vector<std::uint8_t>& bytes, double v);
+
 }  // namespace oceanref

@@ -1,5 +1,7 @@
 #include "raster/camera.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -24,7 +26,7 @@ Camera make_camera(const glm::dvec3& position, const glm::dvec3& look_at, const 
 }
 
 glm::dvec3 ray_direction(const Camera& c, double x, double y) {
-  const double t = std::tan(0.5 * c.vertical_fov);
+  const double t = math::tan(0.5 * c.vertical_fov);
   const double aspect = static_cast<double>(c.width) / c.height;
   const double u = (2.0 * x / c.width - 1.0) * t * aspect;
   const double v = (1.0 - 2.0 * y / c.height) * t;
@@ -34,7 +36,7 @@ glm::dvec3 ray_direction(const Camera& c, double x, double y) {
 glm::dvec3 project(const Camera& c, const glm::dvec3& world) {
   const glm::dvec3 p = world - c.position;
   const double z = glm::dot(p, c.forward);
-  const double t = std::tan(0.5 * c.vertical_fov);
+  const double t = math::tan(0.5 * c.vertical_fov);
   const double aspect = static_cast<double>(c.width) / c.height;
   const double u = glm::dot(p, c.right) / (z * t * aspect);
   const double v = glm::dot(p, c.up) / (z * t);

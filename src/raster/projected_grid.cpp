@@ -1,5 +1,7 @@
 #include "raster/projected_grid.h"
 
+#include "core/math.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,8 +11,20 @@
 namespace oceanref {
 
 namespace {
+// OpenGL's perspective projection (right-handed, clip z in [−1, 1]), as glm::perspective builds
+// it but with the portable tangent (glm's calls the platform's libm).
+glm::dmat4 perspective_projection(double vertical_fov, double aspect, double near, double far) {
+  const double t = math::tan(0.5 * vertical_fov);
+  glm::dmat4 m(0.0);
+  m[0][0] = 1.0 / (aspect * t);
+  m[1][1] = 1.0 / t;
+  m[2][2] = -(far + near) / (far - near);
+  m[2][3] = -1.0;
+  m[3][2] = -(2.0 * far * near) / (far - near);
+  return m;
+}
 std::array<glm::dvec3, 8> frustum_corners(const Camera& c, double near, double far) {
-  const double t = std::tan(0.5 * c.vertical_fov);
+  const double t = math::tan(0.5 * c.vertical_fov);
   const double aspect = static_cast<double>(c.width) / c.height;
   std::array<glm::dvec3, 8> corners{};
   int i = 0;
@@ -73,7 +87,7 @@ ProjectedGrid project_grid(const Camera& camera, const ProjectedGridSettings& s)
       std::fabs(view_dir.y) > 0.999 ? glm::normalize(projector_up) : glm::dvec3(0.0, 1.0, 0.0);
   const glm::dmat4 view = glm::lookAt(position, target, up);
   const double aspect = static_cast<double>(camera.width) / camera.height;
-  const glm::dmat4 projection = glm::perspective(camera.vertical_fov, aspect, s.near, s.far);
+  const glm::dmat4 projection = perspective_projection(camera.vertical_fov, aspect, s.near, s.far);
   const glm::dmat4 view_projection = projection * view;
   grid.projector_position = position;
   grid.projector_target = target;

@@ -1,5 +1,8 @@
 #include "raster/renderer.h"
 
+#include "core/fp_environment.h"
+#include "core/math.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -157,8 +160,8 @@ Lighting lighting_of(const Sky& sky, const ShadingSettings& sh) {
   return {sky.sun_direction,
           sun_radiance_rgb(sky),
           sky_irradiance(sky).rgb,
-          std::cos(kSunAngularRadius),
-          2.0 * std::numbers::pi * (1.0 - std::cos(kSunAngularRadius)),
+          math::cos(kSunAngularRadius),
+          2.0 * std::numbers::pi * (1.0 - math::cos(kSunAngularRadius)),
           gauss_hermite(sh.sky_order),
           sh.sun_order > 0 ? gauss_legendre(sh.sun_order) : QuadratureRule{}};
 }
@@ -178,6 +181,7 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
 }  // namespace
 
 WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettings& waves) {
+  const ReferenceFpEnvironment fp;
   double k_top = 0.0;
   for (const CascadeSpectra& c : ocean.cascades) {
     k_top = std::fmax(
@@ -192,6 +196,7 @@ WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettin
 
 RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
                      RenderTimes* times) {
+  const ReferenceFpEnvironment fp;
   auto clock = std::chrono::steady_clock::now();
   const auto lap = [&](double RenderTimes::*stage) {
     const auto now = std::chrono::steady_clock::now();
@@ -278,6 +283,7 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
 
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
                                      int pixel_x, int pixel_y) {
+  const ReferenceFpEnvironment fp;
   const FrameFields fields = frame_fields(job);
   const Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};

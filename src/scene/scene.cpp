@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include "core/fp_environment.h"
+
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -364,6 +366,7 @@ void parse_rendering(const Section& top, Scene& scene) {
 }  // namespace
 
 Scene parse_scene(const json& document) {
+  const ReferenceFpEnvironment fp;
   const Section top(
       document, "",
       {"seed", "time", "waves", "camera", "grid", "atmosphere", "shading", "render", "objects"});
@@ -454,6 +457,7 @@ Camera scene_camera(const Scene& s) {
 }
 
 RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) {
+  const ReferenceFpEnvironment fp;
   RenderJob job;
   job.ocean = &ocean;
   job.time = scene.time;

@@ -1,5 +1,7 @@
 #include "shading/ocean_brdf.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -30,7 +32,7 @@ Vec3 combine(double a, const Vec3& u, double b, const Vec3& v, double c, const V
 
 SurfaceFrame wind_frame(const Vec3& normal, double wind_angle) {
   const Vec3 n = normalized(normal);
-  const Vec3 wind{std::cos(wind_angle), 0.0, std::sin(wind_angle)};
+  const Vec3 wind{math::cos(wind_angle), 0.0, math::sin(wind_angle)};
   Vec3 tx = combine(1.0, wind, -dot(wind, n), n, 0.0, n);
   if (dot(tx, tx) < 1e-20) tx = combine(1.0, Vec3{0.0, 0.0, 1.0}, -n[2], n, 0.0, n);
   tx = normalized(tx);
@@ -38,7 +40,7 @@ SurfaceFrame wind_frame(const Vec3& normal, double wind_angle) {
 }
 
 double slope_density(double zeta_x, double zeta_y, SlopeVariance s) {
-  return std::exp(-0.5 * (zeta_x * zeta_x / s.x + zeta_y * zeta_y / s.y)) /
+  return math::exp(-0.5 * (zeta_x * zeta_x / s.x + zeta_y * zeta_y / s.y)) /
          (2.0 * kPi * std::sqrt(s.x * s.y));
 }
 
@@ -51,14 +53,14 @@ double directional_slope_variance(const Vec3& d, const SurfaceFrame& f, SlopeVar
 }
 
 double rational_erfc(double x) {
-  return 2.0 * std::exp(-x * x) / (2.319 * x + std::sqrt(4.0 + 1.52 * x * x));
+  return 2.0 * math::exp(-x * x) / (2.319 * x + std::sqrt(4.0 + 1.52 * x * x));
 }
 
 namespace {
 // (e^{−ν²} − ν√π erfc ν)/(2√π): Λ·ν, finite at ν = 0.
 double lambda_times_nu(double nu, ErfcForm form) {
-  const double e = form == ErfcForm::exact ? std::erfc(nu) : rational_erfc(nu);
-  return (std::exp(-nu * nu) - nu * kSqrtPi * e) / (2.0 * kSqrtPi);
+  const double e = form == ErfcForm::exact ? math::erfc(nu) : rational_erfc(nu);
+  return (math::exp(-nu * nu) - nu * kSqrtPi * e) / (2.0 * kSqrtPi);
 }
 }  // namespace
 
@@ -125,7 +127,7 @@ double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const Sur
 double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const SurfaceFrame& f,
                      SlopeVariance s, const QuadratureRule& r, const BrdfOptions& options) {
   if (r.nodes.empty()) {
-    return ocean_brdf(sun, view, f, s, options).brdf_cos * 2.0 * kPi * (1.0 - std::cos(radius));
+    return ocean_brdf(sun, view, f, s, options).brdf_cos * 2.0 * kPi * (1.0 - math::cos(radius));
   }
   // Orthonormal basis around the sun direction.
   const Vec3 u = normalized(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
@@ -138,11 +140,11 @@ double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const Sur
     double ring = 0.0;
     for (int j = 0; j < azimuths; ++j) {  // periodic: the trapezoid rule is spectrally accurate
       const double psi = 2.0 * kPi * (j + 0.5) / azimuths;
-      const Vec3 l = combine(std::cos(rho), sun, std::sin(rho) * std::cos(psi), u,
-                             std::sin(rho) * std::sin(psi), w);
+      const Vec3 l = combine(math::cos(rho), sun, math::sin(rho) * math::cos(psi), u,
+                             math::sin(rho) * math::sin(psi), w);
       ring += ocean_brdf(l, view, f, s, options).brdf_cos;
     }
-    sum += 0.5 * radius * r.weights[i] * std::sin(rho) * ring * (2.0 * kPi / azimuths);
+    sum += 0.5 * radius * r.weights[i] * math::sin(rho) * ring * (2.0 * kPi / azimuths);
   }
   return sum;
 }
@@ -178,8 +180,8 @@ double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
 double mean_fresnel_fit(const Vec3& view, const SurfaceFrame& f, SlopeVariance s) {
   const double sigma_v = std::sqrt(directional_slope_variance(view, f, s));
   const double cos_v = std::fmax(dot(view, f.normal), 0.0);
-  const double fit = std::pow(1.0 - cos_v, 5.0 * std::exp(-2.69 * sigma_v)) /
-                     (1.0 + 22.7 * std::pow(sigma_v, 1.5));
+  const double fit = math::pow(1.0 - cos_v, 5.0 * math::exp(-2.69 * sigma_v)) /
+                     (1.0 + 22.7 * math::pow(sigma_v, 1.5));
   return 0.02 + 0.98 * fit;
 }
 

@@ -1,5 +1,7 @@
 #include "shading/ocean_lighting.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -105,7 +107,7 @@ Vec3 refracted_sea(double mean_fresnel_value, const Vec3& sea_colour, const Vec3
 
 double whitecap_coverage(double mean, double variance, double threshold) {
   if (!(variance > 0.0)) return mean < threshold ? 1.0 : 0.0;
-  return 0.5 * std::erfc((mean - threshold) / std::sqrt(2.0 * variance));
+  return 0.5 * math::erfc((mean - threshold) / std::sqrt(2.0 * variance));
 }
 
 Vec3 foam_radiance(double albedo, const Vec3& e_sun, const Vec3& e_sky) {

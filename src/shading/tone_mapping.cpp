@@ -1,5 +1,7 @@
 #include "shading/tone_mapping.h"
 
+#include "core/math.h"
+
 #include <cmath>
 
 namespace oceanref {
@@ -11,8 +13,8 @@ double relative_luminance(const Vec3& c) {
 double log_average_luminance(const std::vector<Vec3>& image, double delta) {
   if (image.empty()) return 0.0;
   double sum = 0.0;
-  for (const Vec3& c : image) sum += std::log(delta + std::fmax(relative_luminance(c), 0.0));
-  return std::exp(sum / static_cast<double>(image.size()));
+  for (const Vec3& c : image) sum += math::log(delta + std::fmax(relative_luminance(c), 0.0));
+  return math::exp(sum / static_cast<double>(image.size()));
 }
 
 Vec3 reinhard(const Vec3& rgb, double log_average, double key, double white) {
@@ -25,7 +27,7 @@ Vec3 reinhard(const Vec3& rgb, double log_average, double key, double white) {
 }
 
 double automatic_key(double adaptation_luminance) {
-  return 1.03 - 2.0 / (2.0 + std::log10(adaptation_luminance + 1.0));
+  return 1.03 - 2.0 / (2.0 + math::log10(adaptation_luminance + 1.0));
 }
 
 double adaptation_time_constant(double luminance) {
@@ -35,12 +37,12 @@ double adaptation_time_constant(double luminance) {
 
 double adapt_luminance(double adapted, double scene, double time_step) {
   return adapted +
-         (scene - adapted) * (1.0 - std::exp(-time_step / adaptation_time_constant(adapted)));
+         (scene - adapted) * (1.0 - math::exp(-time_step / adaptation_time_constant(adapted)));
 }
 
 double srgb_encode(double linear) {
   const double c = std::fmin(std::fmax(linear, 0.0), 1.0);
-  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * math::pow(c, 1.0 / 2.4) - 0.055;
 }
 
 }  // namespace oceanref

@@ -1,5 +1,8 @@
 #include "sky/preetham.h"
 
+#include "core/fp_environment.h"
+#include "core/math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -23,7 +26,7 @@ double dot(const Vec3& a, const Vec3& b) {
 double angle_between(const Vec3& a, const Vec3& b) {
   const Vec3 d{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
   const Vec3 s{a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-  return 2.0 * std::atan2(std::sqrt(dot(d, d)), std::sqrt(dot(s, s)));
+  return 2.0 * math::atan2(std::sqrt(dot(d, d)), std::sqrt(dot(s, s)));
 }
 
 double zenith_chromaticity(double t, double theta, const double (&m)[3][4]) {
@@ -55,15 +58,15 @@ PerezCoefficients perez_y_coefficients(double t) {
 }
 
 double perez(double theta, double gamma, const PerezCoefficients& k) {
-  const double cos_theta = std::cos(theta);
-  const double horizon = cos_theta > 0.0 ? std::exp(k.b / cos_theta) : 0.0;  // B < 0
-  const double cos_gamma = std::cos(gamma);
-  return (1.0 + k.a * horizon) * (1.0 + k.c * std::exp(k.d * gamma) + k.e * cos_gamma * cos_gamma);
+  const double cos_theta = math::cos(theta);
+  const double horizon = cos_theta > 0.0 ? math::exp(k.b / cos_theta) : 0.0;  // B < 0
+  const double cos_gamma = math::cos(gamma);
+  return (1.0 + k.a * horizon) * (1.0 + k.c * math::exp(k.d * gamma) + k.e * cos_gamma * cos_gamma);
 }
 
 double zenith_luminance(double t, double theta_s) {
   const double chi = (4.0 / 9.0 - t / 120.0) * (kPi - 2.0 * theta_s);
-  return 1000.0 * ((4.0453 * t - 4.9710) * std::tan(chi) - 0.2155 * t + 2.4192);
+  return 1000.0 * ((4.0453 * t - 4.9710) * math::tan(chi) - 0.2155 * t + 2.4192);
 }
 
 double zenith_chromaticity_x(double t, double theta_s) {
@@ -81,11 +84,12 @@ double zenith_chromaticity_y(double t, double theta_s) {
 }
 
 Vec3 direction_from_angles(double zenith, double azimuth) {
-  return {std::sin(zenith) * std::cos(azimuth), std::cos(zenith),
-          std::sin(zenith) * std::sin(azimuth)};
+  return {math::sin(zenith) * math::cos(azimuth), math::cos(zenith),
+          math::sin(zenith) * math::sin(azimuth)};
 }
 
 Sky make_sky(double turbidity, double sun_zenith, double sun_azimuth) {
+  const ReferenceFpEnvironment fp;
   if (!(turbidity >= kMinTurbidity && turbidity <= kMaxTurbidity)) {
     throw std::invalid_argument("turbidity must be in [2, 10] (Preetham's fitted range), got " +
                                 std::to_string(turbidity));
@@ -105,8 +109,8 @@ Sky make_sky(double turbidity, double sun_zenith, double sun_azimuth) {
   s.zenith_x = zenith_chromaticity_x(turbidity, s.model_sun_zenith);
   s.zenith_y = zenith_chromaticity_y(turbidity, s.model_sun_zenith);
   // γ is measured to the sun held at the horizon when it has set.
-  s.model_sun_direction =
-      direction_from_angles(s.model_sun_zenith, std::atan2(s.sun_direction[2], s.sun_direction[0]));
+  s.model_sun_direction = direction_from_angles(
+      s.model_sun_zenith, math::atan2(s.sun_direction[2], s.sun_direction[0]));
   s.perez_at_zenith_luminance = perez(0.0, s.model_sun_zenith, s.luminance);
   s.perez_at_zenith_x = perez(0.0, s.model_sun_zenith, s.x);
   s.perez_at_zenith_y = perez(0.0, s.model_sun_zenith, s.y);
@@ -115,7 +119,7 @@ Sky make_sky(double turbidity, double sun_zenith, double sun_azimuth) {
 
 Chromaticity sky_chromaticity(const Sky& sky, const Vec3& direction) {
   if (!(direction[1] > 0.0)) return {sky.zenith_x, sky.zenith_y, 0.0};
-  const double theta = std::acos(std::fmin(direction[1], 1.0));
+  const double theta = math::acos(std::fmin(direction[1], 1.0));
   const double gamma = angle_between(direction, sky.model_sun_direction);
   return {
       sky.zenith_x * perez(theta, gamma, sky.x) / sky.perez_at_zenith_x,
@@ -134,7 +138,7 @@ Vec3 sky_radiance_rgb(const Sky& sky, const Vec3& direction) {
 
 double relative_optical_mass(double sun_zenith) {
   const double degrees = sun_zenith * 180.0 / kPi;
-  return 1.0 / (std::cos(sun_zenith) + 0.15 * std::pow(93.885 - degrees, -1.253));
+  return 1.0 / (math::cos(sun_zenith) + 0.15 * math::pow(93.885 - degrees, -1.253));
 }
 
 double angstrom_beta(double turbidity) {
@@ -144,34 +148,34 @@ double angstrom_beta(double turbidity) {
 double rayleigh_transmittance(double wavelength, double mass, TransmittanceForm form) {
   const double micrometres = wavelength / 1000.0;
   if (form == TransmittanceForm::printed) {
-    return std::exp(-0.008735 * std::pow(micrometres, -4.08 * mass));
+    return math::exp(-0.008735 * math::pow(micrometres, -4.08 * mass));
   }
-  return std::exp(-mass * 0.008735 * std::pow(micrometres, -4.08));
+  return math::exp(-mass * 0.008735 * math::pow(micrometres, -4.08));
 }
 
 double aerosol_transmittance(double wavelength, double mass, double beta, TransmittanceForm form) {
   constexpr double alpha = 1.3;  // Ångström exponent (Preetham A.5)
   const double micrometres = wavelength / 1000.0;
   if (form == TransmittanceForm::printed) {
-    return std::exp(-beta * std::pow(micrometres, -alpha * mass));
+    return math::exp(-beta * math::pow(micrometres, -alpha * mass));
   }
-  return std::exp(-mass * beta * std::pow(micrometres, -alpha));
+  return math::exp(-mass * beta * math::pow(micrometres, -alpha));
 }
 
 double ozone_transmittance(double wavelength, double mass) {
   constexpr double ozone_thickness = 0.35;  // l [cm NTP]
-  return std::exp(-interpolate(kOzoneAbsorption, wavelength) * ozone_thickness * mass);
+  return math::exp(-interpolate(kOzoneAbsorption, wavelength) * ozone_thickness * mass);
 }
 
 double mixed_gas_transmittance(double wavelength, double mass) {
   const double k = interpolate(kMixedGasAbsorption, wavelength) * mass;
-  return std::exp(-1.41 * k / std::pow(1.0 + 118.93 * k, 0.45));
+  return math::exp(-1.41 * k / math::pow(1.0 + 118.93 * k, 0.45));
 }
 
 double water_vapour_transmittance(double wavelength, double mass) {
   constexpr double precipitable_water = 2.0;  // w [cm]
   const double k = interpolate(kWaterVapourAbsorption, wavelength) * precipitable_water * mass;
-  return std::exp(-0.2385 * k / std::pow(1.0 + 20.07 * k, 0.45));
+  return math::exp(-0.2385 * k / math::pow(1.0 + 20.07 * k, 0.45));
 }
 
 namespace {
@@ -215,7 +219,7 @@ Vec3 sun_radiance_rgb(const Sky& sky, TransmittanceForm form) {
 }
 
 SkyIrradiance sky_irradiance(const Sky& sky, double relative_tolerance) {
-  const double sun_azimuth = std::atan2(sky.sun_direction[2], sky.sun_direction[0]);
+  const double sun_azimuth = math::atan2(sky.sun_direction[2], sky.sun_direction[0]);
   const QuadratureTolerance inner_tolerance{relative_tolerance * 0.1, 0.0, 4000};
   const QuadratureTolerance outer_tolerance{relative_tolerance, 0.0, 4000};
   // θ breakpoints: the sun's zenith angle (circumsolar peak), ascending.
@@ -239,7 +243,7 @@ SkyIrradiance sky_irradiance(const Sky& sky, double relative_tolerance) {
                   },
                   {-kPi, -0.5 * kPi, -0.05, 0.0, 0.05, 0.5 * kPi, kPi}, inner_tolerance)
                   .value;
-          return std::cos(theta) * std::sin(theta) * ring;
+          return math::cos(theta) * math::sin(theta) * ring;
         },
         thetas, outer_tolerance);
     out.xyz[component] = r.value;

@@ -1,5 +1,7 @@
 #include "spectrum/dispersion.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <limits>
 
@@ -27,12 +29,12 @@ double capillary_factor_derivative(const Dispersion& d, double k) {
 
 // tanh(x) for x ≥ 0; tanh(∞) = 1.
 double depth_factor(double kh) {
-  return std::isinf(kh) ? 1.0 : std::tanh(kh);
+  return std::isinf(kh) ? 1.0 : math::tanh(kh);
 }
 
 // sech²(x) = 4e^{−2x}/(1 + e^{−2x})² for x ≥ 0: no overflow of cosh for large x.
 double depth_factor_derivative(double kh) {
-  const double e = std::exp(-2.0 * kh);
+  const double e = math::exp(-2.0 * kh);
   return 4.0 * e / ((1.0 + e) * (1.0 + e));
 }
 

@@ -1,5 +1,7 @@
 #include "spectrum/frequency_spectra.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -11,7 +13,7 @@ namespace {
 // exp(x) with x ≤ −745 returning exactly 0, so that prefactor·exp(x) is 0, not 0·∞ = NaN,
 // when a prefactor like ω⁻⁵ overflows as ω → 0 (exp underflows to 0 below −745 anyway).
 double exp_or_zero(double x) {
-  return x < -745.0 ? 0.0 : std::exp(x);
+  return x < -745.0 ? 0.0 : math::exp(x);
 }
 double pow4(double x) {
   return (x * x) * (x * x);
@@ -26,7 +28,7 @@ double pierson_moskowitz_u19_5(double omega, double u19_5, double g) {
   if (!(omega > 0.0)) return 0.0;
   const double e = -kPiersonMoskowitzBeta * pow4(g / (u19_5 * omega));
   if (e < -745.0) return 0.0;
-  return kPiersonMoskowitzAlpha * g * g / pow5(omega) * std::exp(e);
+  return kPiersonMoskowitzAlpha * g * g / pow5(omega) * math::exp(e);
 }
 
 // ω_p = (4β/5)^{1/4} · g/U19.5 ≈ 0.877 g/U19.5  (Gamper eq. 3.38).
@@ -44,7 +46,7 @@ double pierson_moskowitz(double omega, double alpha, double omega_p, double g) {
   if (!(omega > 0.0)) return 0.0;
   const double e = -1.25 * pow4(omega_p / omega);
   if (e < -745.0) return 0.0;
-  return alpha * g * g / pow5(omega) * std::exp(e);
+  return alpha * g * g / pow5(omega) * math::exp(e);
 }
 
 // χ = gF/U10²  (Gamper eq. 3.43).
@@ -54,7 +56,7 @@ double dimensionless_fetch(double fetch, double wind_speed, double g) {
 
 // ν = 3.5 χ^−0.33  (Gamper eq. 3.52).
 double jonswap_dimensionless_peak_frequency(double chi) {
-  return 3.5 * std::pow(chi, -0.33);
+  return 3.5 * math::pow(chi, -0.33);
 }
 
 // ω_p = 2π g ν / U10  (Gamper eq. 3.53).
@@ -64,7 +66,7 @@ double peak_frequency_from_dimensionless(double nu, double wind_speed, double g)
 
 // α = 0.076 χ^−0.22  (Gamper eq. 3.54).
 double jonswap_alpha(double chi) {
-  return 0.076 * std::pow(chi, -0.22);
+  return 0.076 * math::pow(chi, -0.22);
 }
 
 // σ = 0.07 for ω ≤ ω_p, 0.09 above (Gamper eq. 3.51; values overridable).
@@ -83,7 +85,7 @@ double jonswap(double omega, double alpha, double omega_p, double gamma, double 
                double sigma_high, double g) {
   const double r = peak_enhancement_exponent(
       omega, omega_p, jonswap_peak_width(omega, omega_p, sigma_low, sigma_high));
-  return pierson_moskowitz(omega, alpha, omega_p, g) * std::pow(gamma, r);
+  return pierson_moskowitz(omega, alpha, omega_p, g) * math::pow(gamma, r);
 }
 
 // ω_h = ω √(h/g)  (Vincevičius eq. 1.9).
@@ -118,7 +120,7 @@ double thompson_vincent_depth_attenuation(double omega, double depth, double g) 
 
 // Ω_c = 11.6 χ^−0.23, unclamped  (Gamper eq. 3.67).
 double donelan_inverse_wave_age(double chi) {
-  return 11.6 * std::pow(chi, -0.23);
+  return 11.6 * math::pow(chi, -0.23);
 }
 
 // ω_p = Ω_c g / U_c  (Gamper eq. 3.66).
@@ -128,7 +130,7 @@ double donelan_peak_frequency(double inverse_wave_age, double wind_speed, double
 
 // γ = 1.7 for Ω_c < 1, 1.7 + 6 log10 Ω_c for 1 ≤ Ω_c  (Gamper eq. 3.68).
 double donelan_gamma(double inverse_wave_age) {
-  return inverse_wave_age < 1.0 ? 1.7 : 1.7 + 6.0 * std::log10(inverse_wave_age);
+  return inverse_wave_age < 1.0 ? 1.7 : 1.7 + 6.0 * math::log10(inverse_wave_age);
 }
 
 // σ = 0.08 (1 + 4/Ω_c³)  (Gamper eq. 3.68).
@@ -138,7 +140,7 @@ double donelan_sigma(double inverse_wave_age) {
 
 // α = 0.006 Ω_c^0.55  (Gamper eq. 3.68).
 double donelan_alpha(double inverse_wave_age) {
-  return 0.006 * std::pow(inverse_wave_age, 0.55);
+  return 0.006 * math::pow(inverse_wave_age, 0.55);
 }
 
 // Θ(ω) = αg²ω⁻⁵ (ω/ω_p) exp[−(ω_p/ω)⁴] γ^r  (Gamper eq. 3.68).
@@ -147,7 +149,7 @@ double donelan(double omega, double alpha, double omega_p, double gamma, double 
   const double e = -pow4(omega_p / omega);
   if (e < -745.0) return 0.0;
   const double r = peak_enhancement_exponent(omega, omega_p, sigma);
-  return alpha * g * g / pow4(omega) / omega_p * std::exp(e) * std::pow(gamma, r);
+  return alpha * g * g / pow4(omega) / omega_p * math::exp(e) * math::pow(gamma, r);
 }
 
 }  // namespace oceanref

@@ -1,5 +1,7 @@
 #include "spectrum/model.h"
 
+#include "core/math.h"
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -381,11 +383,11 @@ double spreading_at_wavenumber(const Spectrum& s, double k, double theta) {
 // Θ(k) = Ψ(k) D(ω(k), θ) / k, θ = atan2(k_z, k_x)  (Gamper eq. 3.59–3.61, with Ψ = Θ_k of
 // eq. 3.58 for the chosen dispersion relation).
 double wavevector_spectrum(const Spectrum& s, double kx, double kz) {
-  const double k = std::hypot(kx, kz);
+  const double k = math::hypot(kx, kz);
   if (!(k > 0.0) || std::isinf(k)) return 0.0;
   const double psi = wavenumber_spectrum(s, k);
   if (psi == 0.0) return 0.0;
-  return psi * spreading_at_wavenumber(s, k, std::atan2(kz, kx)) / k;
+  return psi * spreading_at_wavenumber(s, k, math::atan2(kz, kx)) / k;
 }
 
 double spreading_integral(const Spectrum& s, double omega) {
@@ -396,7 +398,7 @@ double spreading_integral(const Spectrum& s, double omega) {
     case SpreadingModel::cos4:
       return cosine_power_integral(4.0);
     case SpreadingModel::donelan:
-      return std::tanh(donelan_beta(omega / s.peak_frequency) * kPi);
+      return math::tanh(donelan_beta(omega / s.peak_frequency) * kPi);
     default:
       return 1.0;
   }

@@ -1,5 +1,7 @@
 #include "spectrum/moments.h"
 
+#include "core/math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -68,7 +70,7 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
           const QuadratureResult d = integrate_over_direction(
               s, k,
               [along_x](double theta) {
-                const double c = along_x ? std::cos(theta) : std::sin(theta);
+                const double c = along_x ? math::cos(theta) : math::sin(theta);
                 return c * c;
               },
               inner);
@@ -113,7 +115,7 @@ WindSlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_h
                  integrate_over_direction(
                      s, k,
                      [&](double theta) {
-                       const double c = upwind ? std::cos(theta - phi) : std::sin(theta - phi);
+                       const double c = upwind ? math::cos(theta - phi) : math::sin(theta - phi);
                        return c * c;
                      },
                      inner)

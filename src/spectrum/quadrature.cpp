@@ -1,5 +1,8 @@
 #include "spectrum/quadrature.h"
 
+#include "core/fp_environment.h"
+#include "core/math.h"
+
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -62,6 +65,7 @@ void gauss_kronrod(const std::function<double(double)>& f, Piece& p, int& evalua
 QuadratureResult integrate(const std::function<double(double)>& f,
                            const std::vector<double>& breakpoints,
                            const QuadratureTolerance& tolerance) {
+  const ReferenceFpEnvironment fp;
   if (breakpoints.size() < 2) throw std::invalid_argument("integrate: need two breakpoints");
   QuadratureResult result;
   std::vector<Piece> pieces;
@@ -122,7 +126,7 @@ QuadratureRule gauss_legendre(int n) {
                    std::vector<double>(static_cast<std::size_t>(n))};
   const double pi = 3.141592653589793;
   for (int i = 0; i < (n + 1) / 2; ++i) {
-    double x = std::cos(pi * (i + 0.75) / (n + 0.5));  // Tricomi's initial guess
+    double x = math::cos(pi * (i + 0.75) / (n + 0.5));  // Tricomi's initial guess
     double derivative = 1.0;
     for (int iteration = 0; iteration < 100; ++iteration) {
       double p0 = 1.0;
@@ -155,9 +159,9 @@ QuadratureRule gauss_hermite(int n) {
   for (int i = 0; i < (n + 1) / 2; ++i) {
     // Initial guesses for the largest roots first (asymptotic forms).
     if (i == 0) {
-      z = std::sqrt(2.0 * n + 1.0) - 1.85575 * std::pow(2.0 * n + 1.0, -0.16667);
+      z = std::sqrt(2.0 * n + 1.0) - 1.85575 * math::pow(2.0 * n + 1.0, -0.16667);
     } else if (i == 1) {
-      z -= 1.14 * std::pow(n, 0.426) / z;
+      z -= 1.14 * math::pow(n, 0.426) / z;
     } else if (i == 2) {
       z = 1.86 * z - 0.86 * r.nodes[0];
     } else if (i == 3) {

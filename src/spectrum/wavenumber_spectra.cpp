@@ -1,12 +1,14 @@
 #include "spectrum/wavenumber_spectra.h"
 
+#include "core/math.h"
+
 #include <cmath>
 
 namespace oceanref {
 
 // Ω_c = 0.84 · tanh[(χ/χ0)^0.4]^−0.75, χ0 = 2.2·10⁴  (Gamper eq. 3.70).
 double unified_inverse_wave_age(double chi) {
-  return 0.84 * std::pow(std::tanh(std::pow(chi / 2.2e4, 0.4)), -0.75);
+  return 0.84 * math::pow(math::tanh(math::pow(chi / 2.2e4, 0.4)), -0.75);
 }
 
 // k_p = g Ω_c² / U10²  (Gamper §3.4, Unified).
@@ -17,7 +19,7 @@ double unified_peak_wavenumber(double inverse_wave_age, double wind_speed, doubl
 
 // γ = 1.7 for Ω_c < 1, 1.7 + 6 log10 Ω_c for 1 ≤ Ω_c  (Gamper §3.4, J_p).
 double unified_gamma(double inverse_wave_age) {
-  return inverse_wave_age < 1.0 ? 1.7 : 1.7 + 6.0 * std::log10(inverse_wave_age);
+  return inverse_wave_age < 1.0 ? 1.7 : 1.7 + 6.0 * math::log10(inverse_wave_age);
 }
 
 // σ = 0.08 (1 + 4/Ω_c³)  (Gamper §3.4, J_p).
@@ -35,15 +37,15 @@ double pierson_moskowitz_shape(double k, double k_p) {
   if (!(k > 0.0)) return 0.0;
   const double r = k_p / k;
   const double e = -1.25 * r * r;
-  return e < -745.0 ? 0.0 : std::exp(e);
+  return e < -745.0 ? 0.0 : math::exp(e);
 }
 
 // J_p = γ^Γ, Γ = exp[−(√(k/k_p) − 1)² / (2σ²)]  (Gamper §3.4, Unified).
 double unified_peak_enhancement(double k, double k_p, double gamma, double sigma) {
   const double x = (std::sqrt(k / k_p) - 1.0) / sigma;
   const double e = -0.5 * x * x;
-  const double big_gamma = (std::isinf(x) || e < -745.0) ? 0.0 : std::exp(e);
-  return std::pow(gamma, big_gamma);
+  const double big_gamma = (std::isinf(x) || e < -745.0) ? 0.0 : math::exp(e);
+  return math::pow(gamma, big_gamma);
 }
 
 // F_p = L_PM J_p exp[−Ω_c/√10 (√(k/k_p) − 1)]  (Gamper §3.4, B_l).
@@ -51,7 +53,7 @@ double unified_long_wave_side_effect(double k, double k_p, double inverse_wave_a
                                      double shape_times_enhancement) {
   if (shape_times_enhancement == 0.0) return 0.0;
   const double e = -inverse_wave_age / std::sqrt(10.0) * (std::sqrt(k / k_p) - 1.0);
-  return shape_times_enhancement * (e < -745.0 ? 0.0 : std::exp(e));
+  return shape_times_enhancement * (e < -745.0 ? 0.0 : math::exp(e));
 }
 
 // F_m = L_PM J_p exp[−¼ (k/k_m − 1)²]  (Gamper §3.4, B_h).
@@ -59,22 +61,22 @@ double unified_short_wave_side_effect(double k, double k_m, double shape_times_e
   if (shape_times_enhancement == 0.0) return 0.0;
   const double x = k / k_m - 1.0;
   const double e = -0.25 * x * x;
-  return shape_times_enhancement * (e < -745.0 ? 0.0 : std::exp(e));
+  return shape_times_enhancement * (e < -745.0 ? 0.0 : math::exp(e));
 }
 
 // z0 = 3.7·10⁻⁵ (U10²/g) (U10/c_p)^0.9  (Gamper §3.4, after Donelan et al. 1993).
 double roughness_length(double wind_speed, double peak_phase_speed, double g) {
-  return 3.7e-5 * wind_speed * wind_speed / g * std::pow(wind_speed / peak_phase_speed, 0.9);
+  return 3.7e-5 * wind_speed * wind_speed / g * math::pow(wind_speed / peak_phase_speed, 0.9);
 }
 
 // u* = κ U10 / ln(10/z0)  (Gamper §3.4, law of the wall, κ = 0.41).
 double friction_velocity(double wind_speed, double roughness) {
-  return kVonKarman * wind_speed / std::log(10.0 / roughness);
+  return kVonKarman * wind_speed / math::log(10.0 / roughness);
 }
 
 // α_m = 10⁻²[1 + ln(u*/c_m)] for u* < c_m, 10⁻²[1 + 3 ln(u*/c_m)] otherwise (Gamper §3.4).
 double unified_short_wave_alpha(double friction_velocity, double c_m) {
-  const double l = std::log(friction_velocity / c_m);
+  const double l = math::log(friction_velocity / c_m);
   return 1e-2 * (friction_velocity < c_m ? 1.0 + l : 1.0 + 3.0 * l);
 }
 
@@ -92,8 +94,8 @@ double unified_upwind_ratio(double phase_speed, double peak_phase_speed, double 
   constexpr double a0 = 0.6931471805599453 / 4.0;
   constexpr double ap = 4.0;
   const double am = 0.13 * friction_velocity / c_m;
-  return std::tanh(a0 + ap * std::pow(phase_speed / peak_phase_speed, 2.5) +
-                   am * std::pow(c_m / phase_speed, 2.5));
+  return math::tanh(a0 + ap * math::pow(phase_speed / peak_phase_speed, 2.5) +
+                    am * math::pow(c_m / phase_speed, 2.5));
 }
 
 // Ψ(k) = k⁻³ (B_l + B_h)  (Gamper eq. 3.71), c = ω/k from the gravity-capillary relation.
@@ -124,7 +126,7 @@ double phillips(double k, double amplitude, double largest_wave, double smallest
   const double kl_small = k * smallest_wave;
   const double e = -1.0 / (kl_big * kl_big) - kl_small * kl_small;
   if (e < -745.0) return 0.0;
-  return amplitude * std::exp(e) / (k * k * k);
+  return amplitude * math::exp(e) / (k * k * k);
 }
 
 // k_p = √(2/3)/L: maximum of k⁻³ exp[−(kL)⁻²] (derivative of eq. 3.74 × k, with l = 0).

@@ -1,5 +1,7 @@
 #include "waves/direct_sum.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -11,7 +13,7 @@ Complex wave_phase(int index, double position, double size) {
   const double cycles = index * (std::fmod(position, size) / size);
   const double turn = cycles - std::nearbyint(cycles);
   const double angle = 2.0 * std::numbers::pi * turn;
-  return {std::cos(angle), std::sin(angle)};
+  return {math::cos(angle), math::sin(angle)};
 }
 
 // The basis function along one axis and its derivative: e^{ikx}, ik e^{ikx}; or cos(kx),
@@ -23,7 +25,7 @@ struct AxisBasis {
 AxisBasis axis_basis(int index, double position, double size, int n) {
   const Complex e = wave_phase(index, position, size);
   const double k = index * wavenumber_spacing(size);
-  if (is_nyquist(index, n)) return {e.real(), -k * e.imag()};
+  if (is_nyquist(index, n)) return {e.re, -k * e.im};
   return {e, Complex(0.0, k) * e};
 }
 
@@ -79,7 +81,7 @@ std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const Pat
   add_pattern(low, h.low, x, z, true, sum);
   add_pattern(high, h.high, x, z, false, sum);
   std::array<double, kFieldCount> out{};
-  for (std::size_t f = 0; f < out.size(); ++f) out[f] = sum[f].real();
+  for (std::size_t f = 0; f < out.size(); ++f) out[f] = sum[f].re;
   return out;
 }
 

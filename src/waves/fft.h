@@ -5,16 +5,17 @@
 // bit-identical for every thread count.
 #pragma once
 
-#include <complex>
 #include <vector>
+
+#include "core/complex.h"
 
 namespace oceanref {
 
-void inverse_fft_2d(std::vector<std::complex<double>>& data, int resolution, int threads);
+void inverse_fft_2d(std::vector<Complex>& data, int resolution, int threads);
 // The forward transform, e^{−2πi(am + bn)/N}, unnormalized (Mastin's white-noise analysis).
-void forward_fft_2d(std::vector<std::complex<double>>& data, int resolution, int threads);
+void forward_fft_2d(std::vector<Complex>& data, int resolution, int threads);
 // Either direction: inverse (e^{+…}) or forward (e^{−…}).
-void fft_2d(std::vector<std::complex<double>>& data, int resolution, int threads, bool inverse);
+void fft_2d(std::vector<Complex>& data, int resolution, int threads, bool inverse);
 
 // Runs body(i) for i in [0, count) on up to `threads` threads in contiguous chunks.
 template <class Body>

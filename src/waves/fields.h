@@ -66,14 +66,14 @@ bool is_low_resolution_field(Field f);
       return displacement_factor(beta, spacing, inverse_k, n);
     // d(k_x, 1)·d(k_x, k) = (ik_x)(−ik_x/k) = k_x²/k, and likewise: real multipliers.
     case Field::ddx_dx:
-      return derivative_factor(alpha, spacing, n).imag() *
-             -displacement_factor(alpha, spacing, inverse_k, n).imag();
+      return derivative_factor(alpha, spacing, n).im *
+             -displacement_factor(alpha, spacing, inverse_k, n).im;
     case Field::ddz_dz:
-      return derivative_factor(beta, spacing, n).imag() *
-             -displacement_factor(beta, spacing, inverse_k, n).imag();
+      return derivative_factor(beta, spacing, n).im *
+             -displacement_factor(beta, spacing, inverse_k, n).im;
     case Field::ddx_dz:
-      return derivative_factor(beta, spacing, n).imag() *
-             -displacement_factor(alpha, spacing, inverse_k, n).imag();
+      return derivative_factor(beta, spacing, n).im *
+             -displacement_factor(alpha, spacing, inverse_k, n).im;
   }
   return 0.0;
 }

@@ -1,5 +1,7 @@
 #include "waves/mastin.h"
 
+#include "core/math.h"
+
 #include <cmath>
 
 #include "waves/fft.h"
@@ -34,7 +36,7 @@ PatternSpectrum realize_pattern_mastin(const Spectrum& spectrum, std::uint64_t s
     for (int a = 0; a < n; ++a) {
       const double kx = wave_index(a, n) * dk;
       const double kz = wave_index(b, n) * dk;
-      const double k = std::hypot(kx, kz);
+      const double k = math::hypot(kx, kz);
       if (k > 0.0 && p.band.contains(k)) {
         theta[grid_offset(a, b, n)] = wavevector_spectrum(spectrum, kx, kz);
       }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/fp_environment.h"
 #include "waves/direct_sum.h"
 #include "waves/fft.h"
 #include "waves/mastin.h"
@@ -14,6 +15,7 @@ double default_minimum_wavelength(SpectrumModel model) {
 }
 
 Ocean realize_ocean(const WaveSettings& settings, int threads) {
+  const ReferenceFpEnvironment fp;
   Ocean ocean{make_spectrum(settings.spectrum), {}};
   const double k_max = settings.minimum_wavelength > 0.0
                            ? 2.0 * std::numbers::pi / settings.minimum_wavelength
@@ -41,6 +43,7 @@ Ocean realize_ocean(const WaveSettings& settings, int threads) {
 }
 
 std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads) {
+  const ReferenceFpEnvironment fp;
   std::vector<CascadeFields> fields;
   for (const CascadeSpectra& c : ocean.cascades) {
     fields.push_back(synthesize_cascade(c.low, c.high, time, threads));
@@ -138,7 +141,7 @@ PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fie
 double height_bound(const Ocean& ocean) {
   double bound = 0.0;
   for (const CascadeSpectra& c : ocean.cascades) {
-    for (const Complex& h : c.low.h0) bound += std::abs(h);  // η and D live on the low grid
+    for (const Complex& h : c.low.h0) bound += abs(h);  // η and D live on the low grid
   }
   return bound;
 }
@@ -198,6 +201,7 @@ std::vector<PointFields> combine_on_footprint(const Ocean& ocean,
 
 AccumulatedFoam accumulate_foam(const Ocean& ocean, double time, const FoamSequence& sequence,
                                 int threads) {
+  const ReferenceFpEnvironment fp;
   AccumulatedFoam foam;
   foam.cascades.resize(ocean.cascades.size());
   for (int s = sequence.steps; s >= 0; --s) {

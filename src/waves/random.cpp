@@ -1,5 +1,7 @@
 #include "waves/random.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -30,9 +32,9 @@ double uniform_open(std::uint64_t word) {
 NormalPair standard_normal_pair(std::uint64_t key) {
   const double u1 = uniform_open(random_word(key, 0));
   const double u2 = uniform_open(random_word(key, 1));
-  const double radius = std::sqrt(-2.0 * std::log(u1));
+  const double radius = std::sqrt(-2.0 * math::log(u1));
   const double angle = 2.0 * std::numbers::pi * u2;
-  return {radius * std::cos(angle), radius * std::sin(angle)};
+  return {radius * math::cos(angle), radius * math::sin(angle)};
 }
 
 }  // namespace oceanref

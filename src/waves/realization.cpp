@@ -1,5 +1,7 @@
 #include "waves/realization.h"
 
+#include "core/math.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -17,7 +19,7 @@ Complex initial_amplitude(const Spectrum& spectrum, std::uint64_t seed, const Pa
   const double dk = wavenumber_spacing(p.size);
   const double kx = alpha * dk;
   const double kz = beta * dk;
-  const double k = std::hypot(kx, kz);
+  const double k = math::hypot(kx, kz);
   if (!(k > 0.0) || !p.band.contains(k)) return 0.0;
   const double theta = wavevector_spectrum(spectrum, kx, kz);
   if (theta == 0.0) return 0.0;
@@ -34,7 +36,7 @@ PatternSpectrum pattern_grid(const Spectrum& spectrum, const Pattern& p) {
   for (int b = 0; b < n; ++b) {
     for (int a = 0; a < n; ++a) {
       const std::size_t i = grid_offset(a, b, n);
-      const double k = std::hypot(wave_index(a, n) * dk, wave_index(b, n) * dk);
+      const double k = math::hypot(wave_index(a, n) * dk, wave_index(b, n) * dk);
       s.inverse_wavenumber[i] = k > 0.0 ? 1.0 / k : 0.0;
       s.omega[i] = angular_frequency(spectrum.dispersion, k);
     }
@@ -69,14 +71,14 @@ void evolve_spectrum(const PatternSpectrum& s, double time, int threads, std::ve
       const std::size_t i = grid_offset(a, b, n);
       const std::size_t ic = grid_offset(conjugate_array_index(a, n), bc, n);
       const double phase = s.omega[i] * time;
-      const Complex forward(std::cos(phase), -std::sin(phase));  // e^{−iωt}
+      const Complex forward(math::cos(phase), -math::sin(phase));  // e^{−iωt}
       const Complex p = s.h0[i];
       const Complex q = s.h0[ic];
       // ½[h0(k)e^{−iωt} + (h0(−k)e^{−iωt})*], the products written out (always finite).
-      const double ar = p.real() * forward.real() - p.imag() * forward.imag();
-      const double ai = p.real() * forward.imag() + p.imag() * forward.real();
-      const double br = q.real() * forward.real() - q.imag() * forward.imag();
-      const double bi = q.real() * forward.imag() + q.imag() * forward.real();
+      const double ar = p.re * forward.re - p.im * forward.im;
+      const double ai = p.re * forward.im + p.im * forward.re;
+      const double br = q.re * forward.re - q.im * forward.im;
+      const double bi = q.re * forward.im + q.im * forward.re;
       h[i] = Complex(0.5 * (ar + br), 0.5 * (ai - bi));
     }
   });

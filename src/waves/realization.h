@@ -10,16 +10,14 @@
 //     partner: there the partner stands for the same wave.
 #pragma once
 
-#include <complex>
 #include <cstdint>
 #include <vector>
+#include "core/complex.h"
 
 #include "spectrum/model.h"
 #include "waves/cascades.h"
 
 namespace oceanref {
-
-using Complex = std::complex<double>;
 
 // One cascade sampled on one grid resolution.
 struct Pattern {
