@@ -105,6 +105,16 @@ TEST_CASE("Smith Lambda: 0 at normal incidence, the exact erfc form, grazing lim
         doctest::Approx(std::sqrt(0.02 / (2.0 * kPi))).epsilon(1e-6));
 }
 
+TEST_CASE("smith_terms (one erfc for both) equals smith_lambda and visible_projected_area") {
+  for (const double c : {1e-9, 0.01, 0.3, 0.7, 0.999999, 1.0}) {
+    for (const double s2 : {1e-6, 0.02, 0.5}) {
+      const SmithTerms t = smith_terms(c, s2);
+      CHECK(t.lambda == smith_lambda(c, s2));
+      CHECK(t.visible_area == visible_projected_area(c, s2));
+    }
+  }
+}
+
 TEST_CASE("BRDF: reciprocity, isotropic rotation symmetry, zero below the surface") {
   const SlopeVariance s{0.02, 0.01};
   for (const auto& [l, v] :

@@ -54,6 +54,9 @@ constexpr double kErfSmallCoefs[] = {
     0x1.20dd750429b6dp+0, 0x1.1ae3a90d3fd37p-56, -0x1.812746b0379e7p-2, 0x1.ee13a64567045p-57, 0x1.ce2f21a042be2p-4, -0x1.2b90af498eeaep-58, -0x1.b82ce31288b4ep-6, 0x1.565bcd0e6a130p-8, -0x1.c02db3ffc7658p-11, 0x1.f9a3266fbad9ep-14, -0x1.f4d1fb0e878bdp-17, 0x1.b9bd626f662f7p-20, -0x1.55a9e0165e26bp-23,
 };
 
+// eval_fast relative error bound on every kErfSmallPieces piece (largest piece bound 2^-67.90)
+constexpr double kErfSmallEvalErr = 0x1.4000000000000p-68;
+
 // erf(x), cells of width 1/8 on [0.25, 6]
 constexpr Piece kErfPieces[] = {
     {0x1p-2, 0x1.8000000000000p-2, 0x1.4000000000000p-2, 0.0, 0.0, 4, 12, 0},  // max rel. err 7.2e-23
@@ -151,6 +154,9 @@ constexpr double kErfCoefs[] = {
     0x1.ffffffffffffep-1, 0x1.59ab24e589a30p-56, 0x1.59820071fcca1p-49, -0x1.f610e8c6eecc8p-47, 0x1.df2dc343f4546p-45, -0x1.51b185633df32p-43, 0x1.768f0ccda3a21p-42, -0x1.545c1daeaa72cp-41, 0x1.07cb258edb381p-40, -0x1.594fa6c02c499p-40,
     0x1p+0, -0x1.a6d7d12a8c28dp-55, 0x1.3e2962fcd4f6ep-51, -0x1.d8459dca65c79p-49, 0x1.ccb93c26215d3p-47, -0x1.4c0c0a8512acdp-45, 0x1.791023db615edp-44, -0x1.64dd1cb69d930p-43, 0x1.16b99591ae031p-42,
 };
+
+// eval_fast relative error bound on every kErfPieces piece (largest piece bound 2^-63.12)
+constexpr double kErfEvalErr = 0x1p-63;
 
 // erfcx(x) = exp(x^2) erfc(x), cells of width 1/4 on [0.5, 27.25]
 constexpr Piece kErfcxPieces[] = {
@@ -371,6 +377,148 @@ constexpr double kErfcxCoefs[] = {
     0x1.57b69e225d82ep-6, -0x1.2603d7ec8363fp-62, -0x1.98b1aa696f3f9p-11, 0x1.78e4823c44426p-67, 0x1.e5a00f4451f8ap-16, -0x1.20521ebddfb18p-20, 0x1.561fa1643c704p-25, -0x1.95b0511b1c4afp-30, 0x1.e0bc5decdb702p-35, -0x1.1ca38a8367929p-39, 0x1.50da3afc0c405p-44, -0x1.8e5a38b5c3d87p-49,
     0x1.548cbf7305401p-6, -0x1.fe0a88bd82180p-61, -0x1.9135dd521c376p-11, 0x1.b9ec5ba2e4963p-66, 0x1.d85b61ad547a4p-16, -0x1.15df5d94cfa0bp-20, 0x1.46b5070c7bdd6p-25, -0x1.7fddc52aa059cp-30, 0x1.c2b939c5fc12dp-35, -0x1.086f86a262e16p-39, 0x1.3617eb2a777d7p-44, -0x1.6b5f90f24f739p-49,
 };
+
+// eval_fast relative error bound on every kErfcxPieces piece (largest piece bound 2^-62.89)
+constexpr double kErfcxEvalErr = 0x1.4000000000000p-63;
+
+// Tang's table-driven exp (1989): 2^(j/128) = hi + lo, j = 0..127
+constexpr DD kExp2Table[] = {
+    {0x1p+0, 0.0},
+    {0x1.0163da9fb3335p+0, 0x1.b61299ab8cdb7p-54},
+    {0x1.02c9a3e778061p+0, -0x1.19083535b085dp-56},
+    {0x1.04315e86e7f85p+0, -0x1.0a31c1977c96ep-54},
+    {0x1.059b0d3158574p+0, 0x1.d73e2a475b465p-55},
+    {0x1.0706b29ddf6dep+0, -0x1.c91dfe2b13c27p-55},
+    {0x1.0874518759bc8p+0, 0x1.186be4bb284ffp-57},
+    {0x1.09e3ecac6f383p+0, 0x1.1487818316136p-54},
+    {0x1.0b5586cf9890fp+0, 0x1.8a62e4adc610bp-54},
+    {0x1.0cc922b7247f7p+0, 0x1.01edc16e24f71p-54},
+    {0x1.0e3ec32d3d1a2p+0, 0x1.03a1727c57b53p-59},
+    {0x1.0fb66affed31bp+0, -0x1.b9bedc44ebd7bp-57},
+    {0x1.11301d0125b51p+0, -0x1.6c51039449b3ap-54},
+    {0x1.12abdc06c31ccp+0, -0x1.1b514b36ca5c7p-58},
+    {0x1.1429aaea92de0p+0, -0x1.32fbf9af1369ep-54},
+    {0x1.15a98c8a58e51p+0, 0x1.2406ab9eeab0ap-55},
+    {0x1.172b83c7d517bp+0, -0x1.19041b9d78a76p-55},
+    {0x1.18af9388c8deap+0, -0x1.11023d1970f6cp-54},
+    {0x1.1a35beb6fcb75p+0, 0x1.e5b4c7b4968e4p-55},
+    {0x1.1bbe084045cd4p+0, -0x1.95386352ef607p-54},
+    {0x1.1d4873168b9aap+0, 0x1.e016e00a2643cp-54},
+    {0x1.1ed5022fcd91dp+0, -0x1.1df98027bb78cp-54},
+    {0x1.2063b88628cd6p+0, 0x1.dc775814a8495p-55},
+    {0x1.21f49917ddc96p+0, 0x1.2a97e9494a5eep-55},
+    {0x1.2387a6e756238p+0, 0x1.9b07eb6c70573p-54},
+    {0x1.251ce4fb2a63fp+0, 0x1.ac155bef4f4a4p-55},
+    {0x1.26b4565e27cddp+0, 0x1.2bd339940e9d9p-55},
+    {0x1.284dfe1f56381p+0, -0x1.a4c3a8c3f0d7ep-54},
+    {0x1.29e9df51fdee1p+0, 0x1.612e8afad1255p-55},
+    {0x1.2b87fd0dad990p+0, -0x1.10adcd6381aa4p-59},
+    {0x1.2d285a6e4030bp+0, 0x1.0024754db41d5p-54},
+    {0x1.2ecafa93e2f56p+0, 0x1.1ca0f45d52383p-56},
+    {0x1.306fe0a31b715p+0, 0x1.6f46ad23182e4p-55},
+    {0x1.32170fc4cd831p+0, 0x1.a9ce78e18047cp-55},
+    {0x1.33c08b26416ffp+0, 0x1.32721843659a6p-54},
+    {0x1.356c55f929ff1p+0, -0x1.b5cee5c4e4628p-55},
+    {0x1.371a7373aa9cbp+0, -0x1.63aeabf42eae2p-54},
+    {0x1.38cae6d05d866p+0, -0x1.e958d3c9904bdp-54},
+    {0x1.3a7db34e59ff7p+0, -0x1.5e436d661f5e3p-56},
+    {0x1.3c32dc313a8e5p+0, -0x1.efff8375d29c3p-54},
+    {0x1.3dea64c123422p+0, 0x1.ada0911f09ebcp-55},
+    {0x1.3fa4504ac801cp+0, -0x1.7d023f956f9f3p-54},
+    {0x1.4160a21f72e2ap+0, -0x1.ef3691c309278p-58},
+    {0x1.431f5d950a897p+0, -0x1.1c7dde35f7999p-55},
+    {0x1.44e086061892dp+0, 0x1.89b7a04ef80d0p-59},
+    {0x1.46a41ed1d0057p+0, 0x1.c944bd1648a76p-54},
+    {0x1.486a2b5c13cd0p+0, 0x1.3c1a3b69062f0p-56},
+    {0x1.4a32af0d7d3dep+0, 0x1.9cb62f3d1be56p-54},
+    {0x1.4bfdad5362a27p+0, 0x1.d4397afec42e2p-56},
+    {0x1.4dcb299fddd0dp+0, 0x1.8ecdbbc6a7833p-54},
+    {0x1.4f9b2769d2ca7p+0, -0x1.4b309d25957e3p-54},
+    {0x1.516daa2cf6642p+0, -0x1.f768569bd93efp-55},
+    {0x1.5342b569d4f82p+0, -0x1.07abe1db13cadp-55},
+    {0x1.551a4ca5d920fp+0, -0x1.d689cefede59bp-55},
+    {0x1.56f4736b527dap+0, 0x1.9bb2c011d93adp-54},
+    {0x1.58d12d497c7fdp+0, 0x1.295e15b9a1de8p-55},
+    {0x1.5ab07dd485429p+0, 0x1.6324c054647adp-54},
+    {0x1.5c9268a5946b7p+0, 0x1.c4b1b816986a2p-60},
+    {0x1.5e76f15ad2148p+0, 0x1.ba6f93080e65ep-54},
+    {0x1.605e1b976dc09p+0, -0x1.3e2429b56de47p-54},
+    {0x1.6247eb03a5585p+0, -0x1.383c17e40b497p-54},
+    {0x1.6434634ccc320p+0, -0x1.c483c759d8933p-55},
+    {0x1.6623882552225p+0, -0x1.bb60987591c34p-54},
+    {0x1.68155d44ca973p+0, 0x1.038ae44f73e65p-57},
+    {0x1.6a09e667f3bcdp+0, -0x1.bdd3413b26456p-54},
+    {0x1.6c012750bdabfp+0, -0x1.2895667ff0b0dp-56},
+    {0x1.6dfb23c651a2fp+0, -0x1.bbe3a683c88abp-57},
+    {0x1.6ff7df9519484p+0, -0x1.83c0f25860ef6p-55},
+    {0x1.71f75e8ec5f74p+0, -0x1.16e4786887a99p-55},
+    {0x1.73f9a48a58174p+0, -0x1.0a8d96c65d53cp-54},
+    {0x1.75feb564267c9p+0, -0x1.0245957316dd3p-54},
+    {0x1.780694fde5d3fp+0, 0x1.866b80a02162dp-54},
+    {0x1.7a11473eb0187p+0, -0x1.41577ee04992fp-55},
+    {0x1.7c1ed0130c132p+0, 0x1.f124cd1164dd6p-54},
+    {0x1.7e2f336cf4e62p+0, 0x1.05d02ba15797ep-56},
+    {0x1.80427543e1a12p+0, -0x1.27c86626d972bp-54},
+    {0x1.82589994cce13p+0, -0x1.d4c1dd41532d8p-54},
+    {0x1.8471a4623c7adp+0, -0x1.8d684a341cdfbp-55},
+    {0x1.868d99b4492edp+0, -0x1.fc6f89bd4f6bap-54},
+    {0x1.88ac7d98a6699p+0, 0x1.994c2f37cb53ap-54},
+    {0x1.8ace5422aa0dbp+0, 0x1.6e9f156864b27p-54},
+    {0x1.8cf3216b5448cp+0, -0x1.0d55e32e9e3aap-56},
+    {0x1.8f1ae99157736p+0, 0x1.5cc13a2e3976cp-55},
+    {0x1.9145b0b91ffc6p+0, -0x1.dd6792e582524p-54},
+    {0x1.93737b0cdc5e5p+0, -0x1.75fc781b57ebcp-57},
+    {0x1.95a44cbc8520fp+0, -0x1.64b7c96a5f039p-56},
+    {0x1.97d829fde4e50p+0, -0x1.d185b7c1b85d1p-54},
+    {0x1.9a0f170ca07bap+0, -0x1.173bd91cee632p-54},
+    {0x1.9c49182a3f090p+0, 0x1.c7c46b071f2bep-56},
+    {0x1.9e86319e32323p+0, 0x1.824ca78e64c6ep-56},
+    {0x1.a0c667b5de565p+0, -0x1.359495d1cd533p-54},
+    {0x1.a309bec4a2d33p+0, 0x1.6305c7ddc36abp-54},
+    {0x1.a5503b23e255dp+0, -0x1.d2f6edb8d41e1p-54},
+    {0x1.a799e1330b358p+0, 0x1.bcb7ecac563c7p-54},
+    {0x1.a9e6b5579fdbfp+0, 0x1.0fac90ef7fd31p-54},
+    {0x1.ac36bbfd3f37ap+0, -0x1.f9234cae76cd0p-55},
+    {0x1.ae89f995ad3adp+0, 0x1.7a1cd345dcc81p-54},
+    {0x1.b0e07298db666p+0, -0x1.bdef54c80e425p-54},
+    {0x1.b33a2b84f15fbp+0, -0x1.2805e3084d708p-57},
+    {0x1.b59728de5593ap+0, -0x1.c71dfbbba6de3p-54},
+    {0x1.b7f76f2fb5e47p+0, -0x1.5584f7e54ac3bp-56},
+    {0x1.ba5b030a1064ap+0, -0x1.efcd30e54292ep-54},
+    {0x1.bcc1e904bc1d2p+0, 0x1.23dd07a2d9e84p-55},
+    {0x1.bf2c25bd71e09p+0, -0x1.efdca3f6b9c73p-54},
+    {0x1.c199bdd85529cp+0, 0x1.11065895048ddp-55},
+    {0x1.c40ab5fffd07ap+0, 0x1.b4537e083c60ap-54},
+    {0x1.c67f12e57d14bp+0, 0x1.2884dff483cadp-54},
+    {0x1.c8f6d9406e7b5p+0, 0x1.1acbc48805c44p-56},
+    {0x1.cb720dcef9069p+0, 0x1.503cbd1e949dbp-56},
+    {0x1.cdf0b555dc3fap+0, -0x1.dd83b53829d72p-55},
+    {0x1.d072d4a07897cp+0, -0x1.cbc3743797a9cp-54},
+    {0x1.d2f87080d89f2p+0, -0x1.d487b719d8578p-54},
+    {0x1.d5818dcfba487p+0, 0x1.2ed02d75b3707p-55},
+    {0x1.d80e316c98398p+0, -0x1.11ec18beddfe8p-54},
+    {0x1.da9e603db3285p+0, 0x1.c2300696db532p-54},
+    {0x1.dd321f301b460p+0, 0x1.2da5778f018c3p-54},
+    {0x1.dfc97337b9b5fp+0, -0x1.1a5cd4f184b5cp-54},
+    {0x1.e264614f5a129p+0, -0x1.7b627817a1496p-54},
+    {0x1.e502ee78b3ff6p+0, 0x1.39e8980a9cc8fp-55},
+    {0x1.e7a51fbc74c83p+0, 0x1.2d522ca0c8de2p-54},
+    {0x1.ea4afa2a490dap+0, -0x1.e9c23179c2893p-54},
+    {0x1.ecf482d8e67f1p+0, -0x1.c93f3b411ad8cp-54},
+    {0x1.efa1bee615a27p+0, 0x1.dc7f486a4b6b0p-54},
+    {0x1.f252b376bba97p+0, 0x1.3a1a5bf0d8e43p-54},
+    {0x1.f50765b6e4540p+0, 0x1.9d3e12dd8a18bp-54},
+    {0x1.f7bfdad9cbe14p+0, -0x1.dbb12d006350ap-54},
+    {0x1.fa7c1819e90d8p+0, 0x1.74853f3a5931ep-55},
+    {0x1.fd3c22b8f71f1p+0, 0x1.2eb74966579e7p-57},
+};
+// ln2/128 = kLn2By128Hi + kLn2By128Mid + kLn2By128Lo; the high part has 35 bits
+constexpr double kLn2By128Hi = 0x1.62e42fef80000p-8;
+constexpr double kLn2By128Mid = 0x1.1cf79abc9e3b4p-43;
+constexpr double kLn2By128Lo = -0x1.9ff0342542fc3p-97;
+constexpr double k128ByLn2 = 0x1.71547652b82fep+7;
+// Taylor coefficients (-1)^n/n!, n = 3..7, of e^(-r)
+constexpr double kExpNegTaylor[] = {-0x1.5555555555555p-3, 0x1.5555555555555p-5, -0x1.1111111111111p-7, 0x1.6c16c16c16c17p-10, -0x1.a01a01a01a01ap-13};
 
 // ln Gamma(x), cells of width 1/8 on [0.75, 10]
 constexpr Piece kLgammaPieces[] = {
@@ -719,6 +867,45 @@ DD eval_piece(const Piece& p, const double* table, DD t) {
   return acc;
 }
 
+// Σ c_i t^i, t an exact double, for the fast paths, as head + t^n_dd·tail with two independent
+// dependency chains (Estrin-like, Muller's Handbook §11.2): the double tail
+// Σ_{i≥n_dd} c_i t^{i−n_dd} split into its even and odd parts, each by Horner in t²; the
+// double-double head Σ_{i<n_dd} c_i t^i by Horner steps acc ← c_i + t·acc with one exact product
+// each (Dekker 1971). Relative error ≤ k<Table>EvalErr, a running-error bound (Higham 2002,
+// §5.1) computed per table by special.py (fast_eval_bound).
+DD eval_fast(const Piece& p, const double* table, double t) {
+  const double* c = table + p.offset;
+  const double* tail = c + 2 * p.n_dd;
+  const double t2 = t * t;
+  const int m = p.degree - p.n_dd;  // degree of the tail (≥ 1 in every table)
+  const int top_even = m & ~1;
+  const int top_odd = (m - 1) | 1;
+  double even = tail[top_even];
+  for (int i = top_even - 2; i >= 0; i -= 2) even = tail[i] + t2 * even;
+  double odd = tail[top_odd];
+  for (int i = top_odd - 2; i >= 1; i -= 2) odd = tail[i] + t2 * odd;
+  const double tail_sum = even + t * odd;
+  double t_n = t;  // t^n_dd
+  for (int i = 1; i < p.n_dd; ++i) t_n *= t;
+  const DD t_split = dd::split(t);
+  const int last = p.n_dd - 1;
+  DD acc = {c[2 * last], c[2 * last + 1]};
+  for (int i = last - 1; i >= 0; --i) {
+    acc = add_sloppy(DD{c[2 * i], c[2 * i + 1]}, mul_presplit(acc, t, t_split));
+  }
+  return dd::add(acc, t_n * tail_sum);
+}
+
+// Ziv's rounding test: if |v − exact| ≤ err, with err ≥ 2^−100·|v.hi| covering the rounding of
+// v.lo ± err, and both ends of [v − err, v + err] round to the same double, then so does the
+// exact value (rounding is monotonic); *result is that double.
+inline bool rounds_surely(DD v, double err, double* result) {
+  const double below = v.hi + (v.lo - err);
+  const double above = v.hi + (v.lo + err);
+  *result = below;
+  return below == above;
+}
+
 // Cell i = ⌊(x − x_0)·cells_per_unit⌋ of a uniform grid, clamped to the table.
 template <std::size_t N>
 const Piece& grid_cell(const Piece (&pieces)[N], double scaled_offset) {
@@ -745,6 +932,68 @@ DD erf_small_dd(double x) {
 DD erf_grid_dd(double x) {
   const Piece& p = grid_cell(kErfPieces, (x - 0.25) * 8.0);
   return eval_piece(p, kErfCoefs, x - p.centre_hi);
+}
+
+// Fast paths: the same pieces to about 2^−64 (relative bounds kErf*Err below), then a rounding
+// test; a result that is not surely correctly rounded falls back to the accurate path above, so
+// every result is the one of the accurate path wherever that one is correctly rounded.
+
+// erf x for 2^−900 ≤ |x| < 1/4 as x·g(x²) (see erf_small_dd): eval_fast ≤ kErfSmallEvalErr, the
+// first-order term in u.lo ≤ 2^−69 (|g″|·u·u.lo with u.lo ≤ 2^−53·u), the double-double sum and
+// product ≤ 4·2^−106.
+constexpr double kErfSmallFastErr = kErfSmallEvalErr + 0x1.1p-69;
+DD erf_small_fast(double x) {
+  const DD u = dd::two_product(x, x);
+  const double* c = kErfSmallCoefs;
+  const DD g = eval_fast(kErfSmallPieces[0], c, u.hi);
+  const double slope = c[2] + 2.0 * c[4] * u.hi;
+  return dd::mul(dd::add(g, slope * u.lo), x);
+}
+
+// erf x for 0.25 ≤ x < 6: eval_fast ≤ kErfEvalErr, plus 2^−100 for the rounding test.
+constexpr double kErfGridFastErr = kErfEvalErr + 0x1p-100;
+DD erf_grid_fast(double x) {
+  const Piece& p = grid_cell(kErfPieces, (x - 0.25) * 8.0);
+  return eval_fast(p, kErfCoefs, x - p.centre_hi);
+}
+
+// e^{−x²} = 2^m·v for 0.5 ≤ x < 26 (Tang 1989, table-driven, 2^−68.2 relative): x² = u.hi + u.lo
+// exactly; k = round(u.hi·128/ln 2) < 2^17, −k = 128m + j; r = x² − k·ln2/128 with
+// d = u.hi − k·kLn2By128Hi exact (both multiples of 2^−54, |d| < 2^−8), |r| ≤ 2^−8.47, error of
+// r ≤ 2^−75; e^{−r} = (1 − r.hi) + (q(r.hi) + r.hi·r.lo − r.lo) with q(r) = e^{−r} − 1 + r by its
+// Taylor series to r^7 (truncation 2^−83; evaluation 3.01u·|q| ≤ 2^−69.3, |q| ≤ 2^−17.9; three
+// more roundings ≤ 2^−70.9 each); 2^{j/128} from kExp2Table (2^−105); one product (5·2^−106).
+DD exp_minus_square_fast(double x, int* m) {
+  const DD u = dd::two_product(x, x);
+  constexpr double kShifter = 0x1.8p52;  // round to nearest integer by the addition
+  const double kd = (u.hi * k128ByLn2 + kShifter) - kShifter;
+  const int k = static_cast<int>(kd);
+  const double d = u.hi - kd * kLn2By128Hi;
+  const double c = u.lo - (kd * kLn2By128Mid + kd * kLn2By128Lo);
+  const DD r = dd::two_sum(d, c);
+  const double* a = kExpNegTaylor;  // (−1)^n/n!, n = 3..7
+  const double poly = a[0] + r.hi * (a[1] + r.hi * (a[2] + r.hi * (a[3] + r.hi * a[4])));
+  const double q = (r.hi * r.hi) * (0.5 + r.hi * poly);
+  const DD one_minus = dd::fast_two_sum(1.0, -r.hi);
+  const double small = (q + r.hi * r.lo) - r.lo;
+  const DD e_r = dd::fast_two_sum(one_minus.hi, one_minus.lo + small);
+  const int n = -k;
+  *m = n >> 7;  // floor(n/128): arithmetic shift (C++20)
+  return dd::mul(kExp2Table[n & 127], e_r);
+}
+
+// erfc x for 0.5 ≤ x < 26 (results stay normal): erfcx ≤ kErfcxEvalErr, e^{−x²} ≤ 2^−68.2, the
+// product ≤ 5·2^−106, plus 2^−100 for the rounding test. False if the test fails.
+constexpr double kErfcxFastErr = kErfcxEvalErr + 0x1.1p-68;
+bool erfc_fast(double x, double* result) {
+  const Piece& p = grid_cell(kErfcxPieces, (x - 0.5) * 4.0);
+  const DD f = eval_fast(p, kErfcxCoefs, x - p.centre_hi);
+  int m = 0;
+  const DD e = exp_minus_square_fast(x, &m);
+  const DD v = dd::mul(f, e);
+  if (!rounds_surely(v, kErfcxFastErr * v.hi, result)) return false;
+  *result *= pow2(m);  // exact: the result is normal
+  return true;
 }
 
 // erfc x = e^{−x²}·erfcx(x) for 0.5 ≤ x ≤ 27.25: the factors separately.
@@ -892,21 +1141,45 @@ double erf(double x) {
       const DD c0 = {kErfSmallCoefs[0], kErfSmallCoefs[1]};
       return round_scaled(dd::mul(c0, x * 0x1p200), -200);
     }
+    const DD fast = erf_small_fast(x);
+    double y = 0.0;
+    if (rounds_surely(fast, kErfSmallFastErr * std::fabs(fast.hi), &y)) return y;
     return dd::to_double(erf_small_dd(x));
   }
   if (a >= 6.0) return std::copysign(1.0, x);  // erfc x < 2^−54
+  const DD fast = erf_grid_fast(a);
+  double y = 0.0;
+  if (rounds_surely(fast, kErfGridFastErr * fast.hi, &y)) return std::copysign(y, x);
   return std::copysign(dd::to_double(erf_grid_dd(a)), x);
 }
 
 double erfc(double x) {
   if (x != x) return x + x;
+  double y = 0.0;
   if (x <= -0.25) {
     if (x <= -6.0) return 2.0;  // erfc(−x) < 2^−53: 2 − erfc(−x) rounds to 2
-    return dd::to_double(dd::add(DD{1.0, 0.0}, erf_grid_dd(-x)));  // 1 + erf(−x)
+    // 1 + erf(−x): absolute error ≤ kErfGridFastErr·erf(−x) + 3·2^−106·2.
+    const DD e = erf_grid_fast(-x);
+    if (rounds_surely(dd::add(DD{1.0, 0.0}, e), kErfGridFastErr * e.hi + 0x1p-100, &y)) return y;
+    return dd::to_double(dd::add(DD{1.0, 0.0}, erf_grid_dd(-x)));
   }
-  if (x < 0.25) return dd::to_double(dd::add(DD{1.0, 0.0}, dd::neg(erf_small_dd(x))));
-  if (x < 0.5) return dd::to_double(dd::add(DD{1.0, 0.0}, dd::neg(erf_grid_dd(x))));
+  if (x < 0.25) {
+    if (std::fabs(x) < 0x1p-60) return 1.0 - x;  // erf x < 2^−59: 1 − erf x rounds as 1 − x
+    // 1 − erf x: absolute error ≤ kErfSmallFastErr·|erf x| + 3·2^−106.
+    const DD e = erf_small_fast(x);
+    const double err = kErfSmallFastErr * std::fabs(e.hi) + 0x1p-101;
+    if (rounds_surely(dd::add(DD{1.0, 0.0}, dd::neg(e)), err, &y)) return y;
+    return dd::to_double(dd::add(DD{1.0, 0.0}, dd::neg(erf_small_dd(x))));
+  }
+  if (x < 0.5) {
+    const DD e = erf_grid_fast(x);  // 1 − erf x ≥ 0.47: absolute error as above
+    if (rounds_surely(dd::add(DD{1.0, 0.0}, dd::neg(e)), kErfGridFastErr * e.hi + 0x1p-101, &y)) {
+      return y;
+    }
+    return dd::to_double(dd::add(DD{1.0, 0.0}, dd::neg(erf_grid_dd(x))));
+  }
   if (x > 27.25) return 0.0;  // erfc x < 2^−1075 (underflow)
+  if (x < 26.0 && erfc_fast(x, &y)) return y;
   return exp_times(minus_square(x), erfcx_dd(x));
 }
 

@@ -86,12 +86,12 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
 // Everything the shading of a frame shares: computed once, not per sample.
 struct Lighting {
   Vec3 sun_direction;
-  Vec3 sun_radiance;       // L_sun, cd/m² per channel
-  Vec3 sky_irradiance;     // E_sky on a horizontal plane
-  double cos_sun_radius;   // the sun disk's edge
-  double sun_solid_angle;  // Ω_sun
-  QuadratureRule hermite;  // Gauss–Hermite rule of the sky and F̄ (order sky_order)
-  QuadratureRule disk;     // Gauss–Legendre rule over the sun disk (empty: point sun)
+  Vec3 sun_radiance;                  // L_sun, cd/m² per channel
+  Vec3 sky_irradiance;                // E_sky on a horizontal plane
+  double cos_sun_radius;              // the sun disk's edge
+  double sun_solid_angle;             // Ω_sun
+  QuadratureRule hermite;             // Gauss–Hermite rule of the sky and F̄ (order sky_order)
+  std::vector<SunDiskNode> sun_disk;  // the nodes of the sun-disk rule (order sun_order)
 };
 
 SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const Geometry& g,
@@ -132,8 +132,7 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
   const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   const SlopeVariance s{unresolved.upwind, unresolved.crosswind};
   if (sh.sun) {
-    const double reflectance = reflected_sun(light.sun_direction, kSunAngularRadius, p.view, frame,
-                                             s, light.disk, sh.brdf);
+    const double reflectance = reflected_sun(light.sun_disk, p.view, frame, s, sh.brdf);
     for (std::size_t c = 0; c < 3; ++c) p.sun[c] = reflectance * light.sun_radiance[c];
   }
   if (sh.sky) p.sky = reflected_sky(p.view, frame, s, job.sky, light.hermite, sh.brdf);
@@ -163,7 +162,8 @@ Lighting lighting_of(const Sky& sky, const ShadingSettings& sh) {
           math::cos(kSunAngularRadius),
           2.0 * std::numbers::pi * (1.0 - math::cos(kSunAngularRadius)),
           gauss_hermite(sh.sky_order),
-          sh.sun_order > 0 ? gauss_legendre(sh.sun_order) : QuadratureRule{}};
+          sun_disk_nodes(sky.sun_direction, kSunAngularRadius,
+                         sh.sun_order > 0 ? gauss_legendre(sh.sun_order) : QuadratureRule{})};
 }
 
 std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const SampleGrid& grid) {

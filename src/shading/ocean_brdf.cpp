@@ -71,6 +71,14 @@ double smith_lambda(double cos_theta, double sigma2, ErfcForm form) {
   return std::fmax(0.0, lambda_times_nu(nu, form) / nu);
 }
 
+SmithTerms smith_terms(double cos_theta, double sigma2, ErfcForm form) {
+  if (!(cos_theta < 1.0)) return {0.0, 1.0};
+  const double width = std::sqrt(2.0 * sigma2 * (1.0 - cos_theta * cos_theta));
+  const double nu = cos_theta / width;
+  const double lambda_nu = std::fmax(0.0, lambda_times_nu(nu, form));
+  return {lambda_nu / nu, cos_theta + width * lambda_nu};
+}
+
 double visible_projected_area(double cos_theta, double sigma2, ErfcForm form) {
   const double c = std::fmin(std::fmax(cos_theta, 0.0), 1.0);
   if (c == 1.0) return 1.0;
@@ -94,25 +102,37 @@ double fresnel_reflectance(double cos_i, FresnelForm form) {
   return 0.5 * (rs * rs + rp * rp);
 }
 
+ViewTerms view_terms(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, ErfcForm form) {
+  ViewTerms v;
+  v.cos_theta = dot(view, f.normal);
+  v.sigma2 = directional_slope_variance(view, f, s);
+  if (v.cos_theta > 0.0) v.smith = smith_terms(v.cos_theta, v.sigma2, form);
+  return v;
+}
+
 BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
                      const BrdfOptions& options) {
+  return ocean_brdf(light, view, view_terms(view, f, s, options.erfc), f, s, options);
+}
+
+BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const ViewTerms& v, const SurfaceFrame& f,
+                     SlopeVariance s, const BrdfOptions& options) {
   BrdfTerms t{};
   const double zl = dot(light, f.normal);
-  const double zv = dot(view, f.normal);
+  const double zv = v.cos_theta;
   if (!(zl > 0.0) || !(zv > 0.0)) return t;
   const Vec3 h = normalized(combine(1.0, light, 1.0, view, 0.0, view));
   const double zh = dot(h, f.normal);
   t.zeta_x = dot(h, f.tangent_x) / zh;
   t.zeta_y = dot(h, f.tangent_y) / zh;
   t.p = slope_density(t.zeta_x, t.zeta_y, s);
-  t.sigma2_view = directional_slope_variance(view, f, s);
+  t.sigma2_view = v.sigma2;
   t.sigma2_light = directional_slope_variance(light, f, s);
-  t.lambda_view = smith_lambda(zv, t.sigma2_view, options.erfc);
+  t.lambda_view = v.smith.lambda;
   t.lambda_light = smith_lambda(zl, t.sigma2_light, options.erfc);
   t.fresnel = fresnel_reflectance(dot(view, h), options.fresnel);
   // zV(1 + Λ_V + Λ_L) written so that it stays finite as zV → 0.
-  const double denominator =
-      visible_projected_area(zv, t.sigma2_view, options.erfc) + zv * t.lambda_light;
+  const double denominator = v.smith.visible_area + zv * t.lambda_light;
   const double zh2 = zh * zh;
   t.brdf_cos = t.fresnel * t.p / (4.0 * zh2 * zh2 * denominator);
   return t;
@@ -126,25 +146,36 @@ double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const Sur
 
 double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const SurfaceFrame& f,
                      SlopeVariance s, const QuadratureRule& r, const BrdfOptions& options) {
-  if (r.nodes.empty()) {
-    return ocean_brdf(sun, view, f, s, options).brdf_cos * 2.0 * kPi * (1.0 - math::cos(radius));
-  }
+  return reflected_sun(sun_disk_nodes(sun, radius, r), view, f, s, options);
+}
+
+std::vector<SunDiskNode> sun_disk_nodes(const Vec3& sun, double radius, const QuadratureRule& r) {
+  if (r.nodes.empty()) return {{sun, 2.0 * kPi * (1.0 - math::cos(radius))}};
   // Orthonormal basis around the sun direction.
   const Vec3 u = normalized(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
                                                     : cross(sun, Vec3{1.0, 0.0, 0.0}));
   const Vec3 w = cross(sun, u);
   const int azimuths = 4 * static_cast<int>(r.nodes.size());
-  double sum = 0.0;
+  std::vector<SunDiskNode> nodes;
   for (std::size_t i = 0; i < r.nodes.size(); ++i) {
-    const double rho = 0.5 * radius * (r.nodes[i] + 1.0);  // [−1, 1] → [0, ρ]
-    double ring = 0.0;
-    for (int j = 0; j < azimuths; ++j) {  // periodic: the trapezoid rule is spectrally accurate
-      const double psi = 2.0 * kPi * (j + 0.5) / azimuths;
-      const Vec3 l = combine(math::cos(rho), sun, math::sin(rho) * math::cos(psi), u,
-                             math::sin(rho) * math::sin(psi), w);
-      ring += ocean_brdf(l, view, f, s, options).brdf_cos;
+    const math::SinCos rho = math::sincos(0.5 * radius * (r.nodes[i] + 1.0));  // [−1, 1] → [0, ρ]
+    // Polar coordinates: dω = sin ρ dρ dψ; the azimuth is periodic, so the trapezoid rule in ψ
+    // is spectrally accurate.
+    const double weight = 0.5 * radius * r.weights[i] * rho.sin * (2.0 * kPi / azimuths);
+    for (int j = 0; j < azimuths; ++j) {
+      const math::SinCos psi = math::sincos(2.0 * kPi * (j + 0.5) / azimuths);
+      nodes.push_back({combine(rho.cos, sun, rho.sin * psi.cos, u, rho.sin * psi.sin, w), weight});
     }
-    sum += 0.5 * radius * r.weights[i] * math::sin(rho) * ring * (2.0 * kPi / azimuths);
+  }
+  return nodes;
+}
+
+double reflected_sun(const std::vector<SunDiskNode>& nodes, const Vec3& view, const SurfaceFrame& f,
+                     SlopeVariance s, const BrdfOptions& options) {
+  const ViewTerms v = view_terms(view, f, s, options.erfc);
+  double sum = 0.0;
+  for (const SunDiskNode& node : nodes) {
+    sum += node.weight * ocean_brdf(node.direction, view, v, f, s, options).brdf_cos;
   }
   return sum;
 }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "sky/color.h"
 #include "spectrum/quadrature.h"
@@ -38,7 +39,7 @@ double slope_density(double zeta_x, double zeta_y, SlopeVariance s);
 // 1/(1 + φ²) as if φ were tan φ — a misprint recorded in FORMULAS.md.
 double directional_slope_variance(const Vec3& d, const SurfaceFrame& f, SlopeVariance s);
 
-enum class ErfcForm { exact, rational };  // std::erfc, or 2e^{−x²}/(2.319x + √(4 + 1.52x²))
+enum class ErfcForm { exact, rational };  // math::erfc, or 2e^{−x²}/(2.319x + √(4 + 1.52x²))
 // erfc(x) for x ≥ 0 by the rational approximation of the demo (Bruneton's ocean.glsl).
 double rational_erfc(double x);
 // Smith's Λ for Gaussian slopes: Λ = (e^{−ν²} − ν√π erfc ν)/(2ν√π), ν = cos θ/√(2σ²(1 − cos²θ))
@@ -46,6 +47,12 @@ double rational_erfc(double x);
 double smith_lambda(double cos_theta, double sigma2, ErfcForm form = ErfcForm::exact);
 // cos θ · (1 + Λ(cos θ)): finite as cos θ → 0, where it tends to √(σ²/(2π)).
 double visible_projected_area(double cos_theta, double sigma2, ErfcForm form = ErfcForm::exact);
+// Both of the above for one direction from a single erfc and exponential (0 < cos θ).
+struct SmithTerms {
+  double lambda;        // Λ
+  double visible_area;  // cos θ·(1 + Λ)
+};
+SmithTerms smith_terms(double cos_theta, double sigma2, ErfcForm form = ErfcForm::exact);
 
 // Exact dielectric, 0.02 + 0.98(1 − cos)^5 (Schlick with the demo's constants), or 1 (a perfect
 // mirror facet: for energy checks).
@@ -74,6 +81,17 @@ struct BrdfTerms {
 // below the mean surface.
 BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const SurfaceFrame& frame,
                      SlopeVariance s, const BrdfOptions& options = {});
+// The view's part of the BRDF, the same for every light direction (computed once per sample).
+struct ViewTerms {
+  double cos_theta = 0.0;  // V·N
+  double sigma2 = 0.0;     // σ² along V
+  SmithTerms smith{};      // Λ_V and cos θ_V (1 + Λ_V); zero when V·N ≤ 0
+};
+ViewTerms view_terms(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s,
+                     ErfcForm form = ErfcForm::exact);
+// ocean_brdf with the view terms given: the same bits as the form above.
+BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const ViewTerms& view_part,
+                     const SurfaceFrame& frame, SlopeVariance s, const BrdfOptions& options = {});
 
 // The sun reflected into V, integrated over the sun disk (angular radius ρ, uniform radiance
 // L_sun): ∫_disk f cos θ_L dω · L_sun, by Gauss–Legendre quadrature in the disk's polar
@@ -85,6 +103,18 @@ double reflected_sun(const Vec3& sun, double sun_radius, const Vec3& view,
 double reflected_sun(const Vec3& sun, double sun_radius, const Vec3& view,
                      const SurfaceFrame& frame, SlopeVariance s, const QuadratureRule& disk,
                      const BrdfOptions& options = {});
+// A node of the sun-disk rule: a direction L inside the disk and its weight [sr].
+struct SunDiskNode {
+  Vec3 direction;
+  double weight;
+};
+// The nodes of the rule above (order × 4·order; empty rule: the sun's centre with weight
+// Ω_sun = 2π(1 − cos ρ)); they depend on the sun only, so a renderer computes them per frame.
+std::vector<SunDiskNode> sun_disk_nodes(const Vec3& sun, double sun_radius,
+                                        const QuadratureRule& disk);
+// Σ weight · f(L, V) cos θ_L over the nodes.
+double reflected_sun(const std::vector<SunDiskNode>& nodes, const Vec3& view,
+                     const SurfaceFrame& frame, SlopeVariance s, const BrdfOptions& options = {});
 
 // Mean Fresnel over the visible slopes: F̄ = ∫ F(V·m) ⟨V·ñ⟩₊ p dζ / (cos θ_V (1 + Λ_V)), ñ the
 // unnormalized facet normal, by Gauss–Hermite quadrature of the given order per axis.

@@ -57,11 +57,14 @@ PerezCoefficients perez_y_coefficients(double t) {
           -0.0109 * t + 0.0529};
 }
 
+double perez(const PerezAngles& p, const PerezCoefficients& k) {
+  const double horizon = p.cos_theta > 0.0 ? math::exp(k.b / p.cos_theta) : 0.0;  // B < 0
+  return (1.0 + k.a * horizon) *
+         (1.0 + k.c * math::exp(k.d * p.gamma) + k.e * p.cos_gamma * p.cos_gamma);
+}
+
 double perez(double theta, double gamma, const PerezCoefficients& k) {
-  const double cos_theta = math::cos(theta);
-  const double horizon = cos_theta > 0.0 ? math::exp(k.b / cos_theta) : 0.0;  // B < 0
-  const double cos_gamma = math::cos(gamma);
-  return (1.0 + k.a * horizon) * (1.0 + k.c * math::exp(k.d * gamma) + k.e * cos_gamma * cos_gamma);
+  return perez({math::cos(theta), gamma, math::cos(gamma)}, k);
 }
 
 double zenith_luminance(double t, double theta_s) {
@@ -119,12 +122,14 @@ Sky make_sky(double turbidity, double sun_zenith, double sun_azimuth) {
 
 Chromaticity sky_chromaticity(const Sky& sky, const Vec3& direction) {
   if (!(direction[1] > 0.0)) return {sky.zenith_x, sky.zenith_y, 0.0};
-  const double theta = math::acos(std::fmin(direction[1], 1.0));
-  const double gamma = angle_between(direction, sky.model_sun_direction);
-  return {
-      sky.zenith_x * perez(theta, gamma, sky.x) / sky.perez_at_zenith_x,
-      sky.zenith_y * perez(theta, gamma, sky.y) / sky.perez_at_zenith_y,
-      sky.zenith_luminance * perez(theta, gamma, sky.luminance) / sky.perez_at_zenith_luminance};
+  // For the unit direction d and sun s: cos θ = d_y and cos γ = d·s, with γ from the accurate
+  // half-angle form (one transcendental for the three coefficient sets).
+  const PerezAngles angles{std::fmin(direction[1], 1.0),
+                           angle_between(direction, sky.model_sun_direction),
+                           std::clamp(dot(direction, sky.model_sun_direction), -1.0, 1.0)};
+  return {sky.zenith_x * perez(angles, sky.x) / sky.perez_at_zenith_x,
+          sky.zenith_y * perez(angles, sky.y) / sky.perez_at_zenith_y,
+          sky.zenith_luminance * perez(angles, sky.luminance) / sky.perez_at_zenith_luminance};
 }
 
 Vec3 sky_radiance_xyz(const Sky& sky, const Vec3& direction) {

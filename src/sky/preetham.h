@@ -32,7 +32,12 @@ PerezCoefficients perez_luminance_coefficients(double turbidity);
 PerezCoefficients perez_x_coefficients(double turbidity);
 PerezCoefficients perez_y_coefficients(double turbidity);
 // F(θ, γ) = (1 + A e^{B/cos θ})(1 + C e^{Dγ} + E cos²γ)  (Preetham eq. 3, Perez et al. 1993);
-// θ < 90°.
+// θ < 90°. The angles enter as cos θ, γ [rad] and cos γ, computed once per direction for the
+// three coefficient sets (Y, x, y).
+struct PerezAngles {
+  double cos_theta, gamma, cos_gamma;
+};
+double perez(const PerezAngles& angles, const PerezCoefficients& k);
 double perez(double theta, double gamma, const PerezCoefficients& k);
 // Y_z = [(4.0453T − 4.9710) tan χ − 0.2155T + 2.4192]·1000 cd/m²,
 // χ = (4/9 − T/120)(π − 2θ_s)  (Preetham appendix A.2; the paper's unit is kcd/m²).

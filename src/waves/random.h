@@ -9,8 +9,9 @@
 //   uniform(word)  = ((word >> 11) + 0.5) · 2⁻⁵³                      ∈ (0, 1), never 0 or 1
 //   normals        = Box–Muller on u1 = uniform(word(key, 0)), u2 = uniform(word(key, 1)):
 //                    ξ_r = √(−2 ln u1) cos(2π u2),  ξ_i = √(−2 ln u1) sin(2π u2)
-// The normals use the C library's log, cos and sin: identical for every compiler on one
-// platform (glibc), and within an ulp across libm implementations.
+// The normals use the portable log, cos and sin of core/math.h: the same bits on every
+// compiler, CPU and architecture; they are correctly rounded for all but a handful of
+// arguments in 10^7 (reference/ACCURACY.md), so a correctly rounded libm reproduces them.
 #pragma once
 
 #include <cstdint>

@@ -102,7 +102,8 @@ def make_piece(f, centre, a, b, zero=False, max_deg=40, name=""):
             rc = rounded(coefs, n_dd)
             err = max(abs(peval(rc, s) - v) / abs(v) for s, v in zip(samples, fvals))
             assert err < mpf(2) ** -64, (name, err)
-            return n_dd, rc, err, coefs
+            err_exact = max(abs(peval(coefs, s) - v) / abs(v) for s, v in zip(samples, fvals))
+            return n_dd, rc, err, coefs, (err_exact, min(abs(v) for v in fvals), a, b)
     raise RuntimeError("no fit for %s [%s, %s]" % (name, a, b))
 
 
@@ -133,6 +134,101 @@ def emit_table(name, pieces, comment):
     print()
 
 
+U = mpf(2) ** -53  # unit roundoff
+
+
+def horner_bound(coefs, h):
+    """(bound on |computed - exact|, bound on |value|) of plain double Horner of
+    sum coefs[j] v^j for |v| <= h, v an exact double (Higham, "Accuracy and Stability of
+    Numerical Algorithms", 5.1: running bounds with magnitudes A_j >= |sum_{k>=j} c_k v^(k-j)|)."""
+    A = mpf(0)
+    E = mpf(0)
+    for j in range(len(coefs) - 1, -1, -1):
+        prod = h * (A + E)  # |v * computed acc|
+        A_new = abs(coefs[j]) + h * A
+        if j < len(coefs) - 1:
+            E = h * E + U * prod + U * (A_new + h * E + U * prod)
+        A = A_new
+    return E, A
+
+
+def fast_eval_bound(p):
+    """Bound on the relative error |computed - f| / |f| of eval_fast (math_special.cpp) on a piece
+    of a non-zero function, |t| <= h: head + t^n_dd * tail, with
+      approximation: 4 x the sampled max of |p_exact - f|/|f| (p_exact: the unrounded
+        interpolant, ~2^-80, far below the rest) + sum |stored c_i - c_i| h^i / min|f| (rigorous);
+      tail (double): even and odd parts by Horner in the computed t2 = t^2 (1 + d), |d| <= u,
+        plus the change |E(t2) - E(t^2)| <= sum |e_j| j u h^(2j) (1+u)^j, then t*odd and the sum
+        rounded; t^n_dd by n_dd - 1 roundings and the product t^n_dd * tail by one;
+      head (double-double Horner from c_{n_dd-1}): D_i <= h D_{i+1} + 8 u^2 (A_i + h D_{i+1}
+        + h A_{i+1}) (two exact products and sums, three roundings of terms below u |acc|);
+      final DWPlusFP: 2 u^2 |result|."""
+    err_exact, fmin, a, b = p["info"]
+    h = max(abs(a), abs(b))
+    coefs = rounded(p["coefs"], p["n_dd"])
+    n_dd, deg = p["n_dd"], len(coefs) - 1
+    tail = coefs[n_dd:]
+    assert len(tail) >= 2
+    h2 = h * h * (1 + U)
+    even, odd = tail[0::2], tail[1::2]
+    E_e, A_e = horner_bound(even, h2)
+    E_o, A_o = horner_bound(odd, h2)
+    E_e += sum(abs(c) * j * U * (h * h) ** j * (1 + U) ** j for j, c in enumerate(even))
+    E_o += sum(abs(c) * j * U * (h * h) ** j * (1 + U) ** j for j, c in enumerate(odd))
+    prod = h * (A_o + E_o)
+    E_t = E_e + h * E_o + U * prod + U * (A_e + E_e + prod + U * prod)
+    A_t = A_e + h * A_o
+    tn_rel = (1 + U) ** n_dd - 1  # n_dd - 1 roundings of t^n_dd, one of the product
+    E_tail = h ** n_dd * (E_t + (A_t + E_t) * tn_rel)
+    head = coefs[:n_dd]
+    A = [mpf(0)] * (n_dd + 1)
+    for i in range(n_dd - 1, -1, -1):
+        A[i] = abs(head[i]) + h * A[i + 1]
+    D = mpf(0)
+    for i in range(n_dd - 2, -1, -1):
+        D = h * D + 8 * U * U * (A[i] + h * D + h * A[i + 1])
+    total = sum(abs(c) * h ** i for i, c in enumerate(coefs))
+    final = 2 * U * U * (total + E_tail + D) * (1 + U)
+    rounding = sum(abs(coefs[i] - p["coefs"][i]) * h ** i for i in range(deg + 1))
+    return 4 * err_exact + (rounding + E_tail + D + final) / fmin
+
+
+def emit_bound(name, pieces):
+    """The largest fast_eval_bound of a table, rounded up to 3 significant bits, as a constant."""
+    m = max(fast_eval_bound(p) for p in pieces)
+    e = int(mp.floor(mp.log(m, 2)))
+    bound = mp.ceil(m / mpf(2) ** (e - 2)) * mpf(2) ** (e - 2)
+    sys.stderr.write("%s eval bound 2^%.2f\n" % (name, float(mp.log(m, 2))))
+    print("// eval_fast relative error bound on every k%sPieces piece (largest piece bound 2^%.2f)" %
+          (name, float(mp.log(m, 2))))
+    print("constexpr double k%sEvalErr = %s;" % (name, hexf(bound)))
+    print()
+
+
+def emit_exp_table():
+    """2^(j/128) as double-doubles and ln2/128 in three parts for the fast e^(-x^2) of erfc."""
+    print("// Tang's table-driven exp (1989): 2^(j/128) = hi + lo, j = 0..127")
+    print("constexpr DD kExp2Table[] = {")
+    for j in range(128):
+        hi, lo = split_dd(mpf(2) ** (mpf(j) / 128))
+        print("    {%s, %s}," % (hexf(hi), hexf(lo)))
+    print("};")
+    l = mp.log(2) / 128
+    m, e = mp.frexp(l)
+    hi = mp.floor(m * 2 ** 35) / mpf(2) ** 35 * mpf(2) ** e  # 35 bits: k hi exact for k < 2^18
+    mid = float(l - hi)
+    lo = float(l - hi - mpf(mid))
+    print("// ln2/128 = kLn2By128Hi + kLn2By128Mid + kLn2By128Lo; the high part has 35 bits")
+    print("constexpr double kLn2By128Hi = %s;" % hexf(hi))
+    print("constexpr double kLn2By128Mid = %s;" % hexf(mid))
+    print("constexpr double kLn2By128Lo = %s;" % hexf(lo))
+    print("constexpr double k128ByLn2 = %s;" % hexf(128 / mp.log(2)))
+    print("// Taylor coefficients (-1)^n/n!, n = 3..7, of e^(-r)")
+    print("constexpr double kExpNegTaylor[] = {%s};" %
+          ", ".join(hexf(mpf(-1) ** n / mp.factorial(n)) for n in range(3, 8)))
+    print()
+
+
 def bisect(f, a, b):
     """A root of f in [a, b] (f(a), f(b) of opposite signs), to 2^-400."""
     fa = f(a)
@@ -160,11 +256,12 @@ def piece(f, lo, hi, centre, zero=False, name="", var_lo=None, var_hi=None, max_
     cm = mpf(centre[0]) + mpf(centre[1]) + mpf(centre[2])
     a = mpf(lo) - cm if var_lo is None else var_lo
     b = mpf(hi) - cm if var_hi is None else var_hi
-    n_dd, rc, err, coefs = make_piece(lambda t: f(cm + t), cm, a, b, zero=zero, name=name,
-                                     max_deg=max_deg)
+    n_dd, rc, err, coefs, info = make_piece(lambda t: f(cm + t), cm, a, b, zero=zero, name=name,
+                                           max_deg=max_deg)
     sys.stderr.write("%s [%g, %g] deg %d n_dd %d err %.2e\n" % (name, lo, hi, len(coefs) - 1,
                                                                  n_dd, float(err)))
-    return {"lo": lo, "hi": hi, "centre": centre, "n_dd": n_dd, "coefs": coefs, "err": err}
+    return {"lo": lo, "hi": hi, "centre": centre, "n_dd": n_dd, "coefs": coefs, "err": err,
+            "info": info}
 
 
 def uniform_cells(f, lo, hi, per_unit, name, zeros=()):
@@ -196,15 +293,19 @@ def main():
         return mp.erf(r) / r
     p = piece(g_erf, 0.0, 1.0 / 16, (0.0, 0.0, 0.0), name="erf_small")
     emit_table("ErfSmall", [p], "erf(x) = x g(x^2) for |x| < 1/4, g(u) = erf(sqrt u)/sqrt u, u in [0, 1/16]")
+    emit_bound("ErfSmall", [p])
 
     # --- erf(x) itself on cells of width 1/8 on [0.25, 6] (no exponential needed for erf).
     pcs = uniform_cells(mp.erf, 0.25, 6.0, 8, "erf")
     emit_table("Erf", pcs, "erf(x), cells of width 1/8 on [0.25, 6]")
+    emit_bound("Erf", pcs)
 
     # --- erfc(x) = exp(-x^2) * erfcx(x) on a uniform grid of cells of width 1/4 on [0.5, 27.25].
     erfcx = lambda x: mp.erfc(x) * mp.exp(x * x)
     pcs = uniform_cells(erfcx, 0.5, 27.25, 4, "erfcx")
     emit_table("Erfcx", pcs, "erfcx(x) = exp(x^2) erfc(x), cells of width 1/4 on [0.5, 27.25]")
+    emit_bound("Erfcx", pcs)
+    emit_exp_table()
 
     # --- lgamma on a uniform grid of cells of width 1/8 on [0.75, 10]; the cells next to the zeros
     # x = 1 and x = 2 are expanded around the zero (c_0 = 0).
