@@ -1,7 +1,5 @@
 #include "cli/bench_command.h"
 
-#include "core/math.h"
-
 #include <fftw3.h>
 
 #include <algorithm>
@@ -17,6 +15,7 @@
 #include <string>
 
 #include "cli/text.h"
+#include "core/math.h"
 #include "scene/scene.h"
 #include "shading/ocean_lighting.h"
 #include "waves/direct_sum.h"

@@ -1,7 +1,5 @@
 #include "cli/brdf_command.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -9,6 +7,7 @@
 #include <string>
 
 #include "cli/text.h"
+#include "core/math.h"
 #include "shading/ocean_lighting.h"
 
 namespace oceanref::cli {

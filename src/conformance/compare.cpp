@@ -1,7 +1,5 @@
 #include "conformance/compare.h"
 
-#include "core/math.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +7,8 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+
+#include "core/math.h"
 
 namespace oceanref {
 

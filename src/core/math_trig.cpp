@@ -21,12 +21,10 @@
 #include "core/math.h"
 #include "core/math_kernels.h"
 
-// GCC 12's SLP vectorizer pairs a·b − c with a·b + c into one fused vfmsubadd (x86, e.g. with
-// -march=znver3) although the build says -ffp-contract=off; that changed results in the last
-// bit. Straight-line scalar code here gains nothing from it, so it is switched off for this file.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC optimize("no-tree-slp-vectorize")
-#endif
+// GCC 12's vectorizers pair a·b − c with a·b + c into one fused vfmsubadd (x86, e.g. with
+// -march=znver3) although the build says -ffp-contract=off, which changed asin/acos/atan2 in the
+// last bit: the project compiles with -fno-tree-vectorize (CMakeLists.txt), and
+// tools/check_binary.sh fails on any fused instruction.
 
 namespace oceanref::math {
 namespace {

@@ -1,10 +1,10 @@
 #include "raster/camera.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+
+#include "core/math.h"
 
 namespace oceanref {
 

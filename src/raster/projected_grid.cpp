@@ -1,12 +1,12 @@
 #include "raster/projected_grid.h"
 
-#include "core/math.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
+
+#include "core/math.h"
 
 namespace oceanref {
 

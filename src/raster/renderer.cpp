@@ -1,14 +1,13 @@
 #include "raster/renderer.h"
 
-#include "core/fp_environment.h"
-#include "core/math.h"
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 
+#include "core/fp_environment.h"
+#include "core/math.h"
 #include "spectrum/moments.h"
 #include "waves/fft.h"
 

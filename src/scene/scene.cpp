@@ -1,7 +1,5 @@
 #include "scene/scene.h"
 
-#include "core/fp_environment.h"
-
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -10,6 +8,8 @@
 #include <optional>
 #include <set>
 #include <sstream>
+
+#include "core/fp_environment.h"
 
 namespace oceanref {
 

@@ -1,11 +1,10 @@
 #include "shading/ocean_brdf.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <limits>
 #include <numbers>
 
+#include "core/math.h"
 #include "spectrum/quadrature.h"
 
 namespace oceanref {

@@ -1,10 +1,9 @@
 #include "shading/ocean_lighting.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <numbers>
 
+#include "core/math.h"
 #include "spectrum/quadrature.h"
 
 namespace oceanref {

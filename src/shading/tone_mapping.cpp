@@ -1,8 +1,8 @@
 #include "shading/tone_mapping.h"
 
-#include "core/math.h"
-
 #include <cmath>
+
+#include "core/math.h"
 
 namespace oceanref {
 

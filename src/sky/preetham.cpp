@@ -1,8 +1,5 @@
 #include "sky/preetham.h"
 
-#include "core/fp_environment.h"
-#include "core/math.h"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -10,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/fp_environment.h"
+#include "core/math.h"
 #include "sky/spectral_tables.h"
 #include "spectrum/quadrature.h"
 

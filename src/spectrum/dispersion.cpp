@@ -1,9 +1,9 @@
 #include "spectrum/dispersion.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <limits>
+
+#include "core/math.h"
 
 namespace oceanref {
 

@@ -1,10 +1,9 @@
 #include "spectrum/frequency_spectra.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <numbers>
 
+#include "core/math.h"
 #include "spectrum/dispersion.h"
 
 namespace oceanref {

@@ -1,13 +1,12 @@
 #include "spectrum/model.h"
 
-#include "core/math.h"
-
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <utility>
 
+#include "core/math.h"
 #include "spectrum/frequency_spectra.h"
 #include "spectrum/spreading.h"
 

@@ -1,12 +1,12 @@
 #include "spectrum/moments.h"
 
-#include "core/math.h"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "core/math.h"
 
 namespace oceanref {
 

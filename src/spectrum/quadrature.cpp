@@ -1,8 +1,5 @@
 #include "spectrum/quadrature.h"
 
-#include "core/fp_environment.h"
-#include "core/math.h"
-
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -10,6 +7,9 @@
 #include <stdexcept>
 #include <tuple>
 #include <utility>
+
+#include "core/fp_environment.h"
+#include "core/math.h"
 
 namespace oceanref {
 

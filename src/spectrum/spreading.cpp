@@ -1,9 +1,9 @@
 #include "spectrum/spreading.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <numbers>
+
+#include "core/math.h"
 
 namespace oceanref {
 

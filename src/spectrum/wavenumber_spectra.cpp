@@ -1,8 +1,8 @@
 #include "spectrum/wavenumber_spectra.h"
 
-#include "core/math.h"
-
 #include <cmath>
+
+#include "core/math.h"
 
 namespace oceanref {
 

@@ -1,9 +1,9 @@
 #include "waves/direct_sum.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <numbers>
+
+#include "core/math.h"
 
 namespace oceanref {
 
@@ -12,8 +12,7 @@ namespace {
 Complex wave_phase(int index, double position, double size) {
   const double cycles = index * (std::fmod(position, size) / size);
   const double turn = cycles - std::nearbyint(cycles);
-  const double angle = 2.0 * std::numbers::pi * turn;
-  return {math::cos(angle), math::sin(angle)};
+  return unit_phasor(2.0 * std::numbers::pi * turn);
 }
 
 // The basis function along one axis and its derivative: e^{ikx}, ik e^{ikx}; or cos(kx),

@@ -2,12 +2,12 @@
 
 #include <kiss_fft.h>
 
-#include "core/math.h"
-
 #include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <stdexcept>
+
+#include "core/math.h"
 
 // KissFFT's twiddle factors from the portable cosine and sine (waves/kissfft_portable.c).
 extern "C" double oceanref_kissfft_cos(double phase) {

@@ -1,9 +1,8 @@
 #include "waves/mastin.h"
 
-#include "core/math.h"
-
 #include <cmath>
 
+#include "core/math.h"
 #include "waves/fft.h"
 #include "waves/random.h"
 

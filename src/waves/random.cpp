@@ -1,9 +1,9 @@
 #include "waves/random.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <numbers>
+
+#include "core/math.h"
 
 namespace oceanref {
 

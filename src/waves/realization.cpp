@@ -1,10 +1,9 @@
 #include "waves/realization.h"
 
-#include "core/math.h"
-
 #include <cmath>
 #include <numbers>
 
+#include "core/math.h"
 #include "waves/fft.h"
 #include "waves/random.h"
 
@@ -71,15 +70,9 @@ void evolve_spectrum(const PatternSpectrum& s, double time, int threads, std::ve
       const std::size_t i = grid_offset(a, b, n);
       const std::size_t ic = grid_offset(conjugate_array_index(a, n), bc, n);
       const double phase = s.omega[i] * time;
-      const Complex forward(math::cos(phase), -math::sin(phase));  // e^{−iωt}
-      const Complex p = s.h0[i];
-      const Complex q = s.h0[ic];
-      // ½[h0(k)e^{−iωt} + (h0(−k)e^{−iωt})*], the products written out (always finite).
-      const double ar = p.re * forward.re - p.im * forward.im;
-      const double ai = p.re * forward.im + p.im * forward.re;
-      const double br = q.re * forward.re - q.im * forward.im;
-      const double bi = q.re * forward.im + q.im * forward.re;
-      h[i] = Complex(0.5 * (ar + br), 0.5 * (ai - bi));
+      const Complex forward = conj(unit_phasor(phase));  // e^{−iωt}
+      // ½[h0(k)e^{−iωt} + (h0(−k)e^{−iωt})*]  (core/complex.h: products written out)
+      h[i] = 0.5 * (s.h0[i] * forward + conj(s.h0[ic] * forward));
     }
   });
 }
