@@ -5,8 +5,9 @@
 # machine-code level (tools/check_binary.sh: no libm transcendental, no fused multiply-add).
 #
 #   tools/determinism_matrix.sh          what CI runs on every stop (.ci/run):
-#       gcc -O3 (Release), clang -O3, gcc -O0 (Debug), gcc -O3 -march=x86-64-v3 (AVX2 + FMA
-#       allowed to the compiler), clang -O3 -march=native — each with 1 and 2 threads — and the
+#       gcc -O3 (Release), clang -O2 (RelWithDebInfo), gcc -O0 (Debug), gcc -O3
+#       -march=x86-64-v3 (AVX2 and FMA available to the compiler), clang -O3 -march=native — each
+#       with 1 and 2 threads — and the
 #       gcc build again under glibc's no-FMA/AVX2 variants (GLIBC_TUNABLES, as on an older CPU);
 #       then aarch64: a cross build (tools/cross_aarch64.sh) run under qemu-user, one thread.
 #   tools/determinism_matrix.sh --full   also 3 and 8 threads on every build, and the gcc build
@@ -45,7 +46,7 @@ verify() {
 }
 
 bash tools/build.sh build
-CC=clang CXX=clang++ bash tools/build.sh build-clang
+CC=clang CXX=clang++ bash tools/build.sh build-clang -DCMAKE_BUILD_TYPE=RelWithDebInfo  # -O2 -g
 bash tools/build.sh build-O0 -DCMAKE_BUILD_TYPE=Debug  # CMake's Debug: -g, no optimization
 bash tools/build.sh build-gcc-v3 -DCMAKE_C_FLAGS=-march=x86-64-v3 -DCMAKE_CXX_FLAGS=-march=x86-64-v3
 CC=clang CXX=clang++ bash tools/build.sh build-clang-native \

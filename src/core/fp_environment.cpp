@@ -1,7 +1,6 @@
 #include "core/fp_environment.h"
 
 #include <cfenv>
-#include <cfloat>
 
 #if defined(__x86_64__) || defined(_M_X64)
 #include <xmmintrin.h>
@@ -12,15 +11,8 @@
 #error "oceanref: the FP environment guard knows x86-64 and aarch64 only"
 #endif
 
-// The determinism contract, checked at compile time for every translation unit of the library
-// (core/math.h includes the same checks): fast-math reorders and contracts arithmetic and links
-// code that turns on flush-to-zero; FLT_EVAL_METHOD != 0 (x87) evaluates in extended precision.
-#if defined(__FAST_MATH__)
-#error "oceanref must not be compiled with -ffast-math / -Ofast (determinism contract)"
-#endif
-#if FLT_EVAL_METHOD != 0
-#error "oceanref needs FLT_EVAL_METHOD == 0 (SSE2, not x87): build with -msse2 -mfpmath=sse"
-#endif
+// core/math.h refuses -ffast-math and FLT_EVAL_METHOD != 0 at compile time (determinism contract).
+#include "core/math.h"
 
 namespace oceanref {
 
