@@ -32,11 +32,21 @@ struct QuadratureRule {
   std::vector<double> nodes;
   std::vector<double> weights;
 };
-// Gauss–Legendre on [−1, 1]: ∫ f dx ≈ Σ w_i f(x_i), exact for degree ≤ 2n − 1 (Newton on the
-// Legendre recurrence).
+
+// The largest order gauss_legendre and gauss_hermite accept.
+inline constexpr int kMaxQuadratureOrder = 1024;
+
+// Gauss–Legendre on [−1, 1]: ∫ f dx ≈ Σ w_i f(x_i), exact for degree ≤ 2n − 1. Nodes ascending,
+// x_i = −x_{n−1−i} exactly. Golub–Welsch starting values polished by Newton's method on the
+// Legendre recurrence in double-double: nodes and weights within about ½ ulp for every order
+// 1 … kMaxQuadratureOrder; any other order throws std::invalid_argument.
 QuadratureRule gauss_legendre(int order);
-// Gauss–Hermite: ∫ e^{−t²} f(t) dt ≈ Σ w_i f(t_i), exact for degree ≤ 2n − 1 (Newton on the
-// orthonormal Hermite recurrence, Golub–Welsch weights 2/(H̃_n')²).
+// Gauss–Hermite: ∫ e^{−t²} f(t) dt ≈ Σ w_i f(t_i), exact for degree ≤ 2n − 1. Nodes descending,
+// t_i = −t_{n−1−i} exactly. Golub–Welsch starting values polished by Newton's method on the
+// orthonormal Hermite recurrence in double-double, weights 2/H̃_n'(t_i)² with an exponent kept
+// apart: within about ½ ulp for every order 1 … kMaxQuadratureOrder, except that weights below
+// the normal range (≈ e^{−t²} < 2^−1022, the outer nodes from order 371) are subnormal or 0.
+// Any other order throws std::invalid_argument.
 QuadratureRule gauss_hermite(int order);
 
 }  // namespace oceanref
