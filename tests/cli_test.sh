@@ -147,7 +147,7 @@ cat >"$tmp/render.json" <<'JSON'
 {"seed": 2, "waves": {"cascades": {"sizes": [150, 40]}, "resolution": 32, "choppiness": -0.8},
  "camera": {"position": [0, 5, 0], "look_at": [0, 1, 50]},
  "grid": {"columns": 64, "rows": 64},
- "shading": {"whitecaps": true, "sky_order": 2, "sun_order": 1},
+ "shading": {"whitecaps": true, "accuracy": "fast", "sky_order": 2, "sun_order": 1},
  "render": {"width": 40, "height": 24, "samples_per_pixel": 4}}
 JSON
 expect 0 '^pixel_sha256,[0-9a-f]{64}$' render "$tmp/render.json" -o "$tmp/r1.exr" --png "$tmp/r1.png" --threads 1

@@ -82,7 +82,7 @@ const nlohmann::json kSmallScene = nlohmann::json::parse(R"({"seed": 9, "time": 
       "camera": {"position": [0, 3, 0], "look_at": [2, 1, 50]},
       "grid": {"columns": 64, "rows": 64},
       "atmosphere": {"sun_zenith_deg": 89.5, "sun_azimuth_deg": 80, "turbidity": 9},
-      "shading": {"whitecaps": true, "sky_order": 3, "sun_order": 1},
+      "shading": {"whitecaps": true, "accuracy": "fast", "sky_order": 3, "sun_order": 1},
       "render": {"width": 32, "height": 18, "samples_per_pixel": 1}})");
 
 // The library calls a host makes to render it, and the SHA-256 of the double radiance.

@@ -19,7 +19,7 @@ Scene small_scene(const std::string& camera) {
       "waves": {"cascades": {"sizes": [120, 35]}, "resolution": 32, "choppiness": -0.7},
       "grid": {"columns": 96, "rows": 96},
       "atmosphere": {"sun_zenith_deg": 60, "sun_azimuth_deg": 80, "turbidity": 3},
-      "shading": {"whitecaps": true, "sky_order": 3, "sun_order": 1},
+      "shading": {"whitecaps": true, "accuracy": "fast", "sky_order": 3, "sun_order": 1},
       "render": {"width": 48, "height": 27, "samples_per_pixel": 1}})");
   auto s = j;
   s["camera"] = nlohmann::json::parse(camera);
@@ -111,4 +111,59 @@ TEST_CASE("render determinism: identical pixels for 1, 2, 3 and 8 threads and ac
     CHECK(b.radiance == a.radiance);
     CHECK(b.depth == a.depth);
   }
+}
+
+TEST_CASE(
+    "reference lighting: the error layer is within the tolerance; accuracy and tolerance "
+    "change the image") {
+  auto s = prepare(small_scene(R"({"position": [0, 4, 0], "look_at": [0, 1, 60]})"), 2);
+  s->job.shading.accuracy = LightingAccuracy::reference;
+  s->job.shading.tolerance = 1e-6;
+  s->job.camera.width = 24;  // the reference costs ~1 ms per sample: keep the image small
+  s->job.camera.height = 14;
+  const WindSlopeVariance unresolved = unresolved_slope_variance(s->ocean, s->scene.waves);
+  const RenderedImage reference = render(s->job, unresolved);
+  CHECK(reference.unconverged_samples == 0);
+  CHECK(reference.integrand_evaluations > 0);
+  int sea = 0;
+  for (std::size_t i = 0; i < reference.radiance.size(); ++i) {
+    if (!(reference.coverage[i] > 0.0)) continue;
+    ++sea;
+    for (std::size_t c = 0; c < 3; ++c) {
+      // Every term within max(tol·|term|, tol·1e-3·E/π): the sum within ~1.1·tol of the pixel.
+      CHECK(reference.lighting_error[i][c] > 0.0);
+      CHECK(reference.lighting_error[i][c] <= 1.1e-6 * reference.radiance[i][c]);
+    }
+  }
+  CHECK(sea > 100);
+  // A tighter tolerance changes the bits but not beyond the estimates.
+  s->job.shading.tolerance = 1e-8;
+  const RenderedImage tighter = render(s->job, unresolved);
+  bool differs = false;
+  for (std::size_t i = 0; i < reference.radiance.size(); ++i) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = std::fabs(reference.radiance[i][c] - tighter.radiance[i][c]);
+      differs = differs || d > 0.0;
+      CHECK(d <= reference.lighting_error[i][c] + tighter.lighting_error[i][c]);
+    }
+  }
+  CHECK(differs);
+  // Fast accuracy: its error layer is |fast − reference| + the reference's estimate.
+  s->job.shading.accuracy = LightingAccuracy::fast;
+  s->job.shading.tolerance = 1e-6;
+  s->job.estimate_fast_error = true;
+  const RenderedImage fast = render(s->job, unresolved);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < fast.radiance.size(); ++i) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = std::fabs(fast.radiance[i][c] - reference.radiance[i][c]);
+      CHECK(fast.lighting_error[i][c] >= d - 1e-12 * reference.radiance[i][c]);
+      largest = std::fmax(largest, d / std::fmax(reference.radiance[i][c], 1e-300));
+    }
+  }
+  CHECK(largest > 1e-3);  // order 3/1 is far from converged: the setting matters
+  s->job.estimate_fast_error = false;
+  const RenderedImage plain = render(s->job, unresolved);
+  CHECK(plain.radiance == fast.radiance);  // estimating the error does not change the image
+  CHECK(plain.lighting_error[0] == Vec3{0.0, 0.0, 0.0});
 }

@@ -225,3 +225,29 @@ TEST_CASE("compare: ULP distance and metrics of known differences") {
   b.width = 1;
   CHECK_THROWS_AS(compare_images(a, b, {}), std::invalid_argument);
 }
+
+TEST_CASE("scene: the lighting accuracy settings belong to their mode") {
+  json s = minimal();
+  CHECK(parse_scene(s).shading.accuracy == LightingAccuracy::reference);  // the default
+  CHECK(parse_scene(s).shading.tolerance == 1e-6);
+  s["shading"]["accuracy"] = "exact";
+  CHECK(error_path(s) == "shading.accuracy");
+  s = minimal();
+  s["shading"]["sky_order"] = 8;  // a fast-mode order in a reference scene
+  CHECK(error_path(s) == "shading.sky_order");
+  s["shading"]["accuracy"] = "fast";
+  CHECK(error_path(s).empty());
+  CHECK(parse_scene(s).shading.sky_order == 8);
+  s["shading"]["tolerance"] = 1e-6;  // a reference tolerance in a fast scene
+  CHECK(error_path(s) == "shading.tolerance");
+  s = minimal();
+  s["shading"]["sun_order"] = 2;
+  CHECK(error_path(s) == "shading.sun_order");
+  s = minimal();
+  for (const double bad : {0.0, 1e-11, 0.1}) {
+    s["shading"]["tolerance"] = bad;
+    CHECK(error_path(s) == "shading.tolerance");
+  }
+  s["shading"]["tolerance"] = 1e-8;
+  CHECK(parse_scene(s).shading.tolerance == 1e-8);
+}

@@ -192,3 +192,51 @@ TEST_CASE("extremes: turbidity limits, sun at and below the horizon, grazing dir
   CHECK_THROWS_AS(make_sky(1.5, 0.0, 0.0), std::invalid_argument);
   CHECK_THROWS_AS(make_sky(11.0, 0.0, 0.0), std::invalid_argument);
 }
+
+TEST_CASE("below the horizon the sky is its horizon limit, continued smoothly (no jump)") {
+  // B < 0 for Y, x and y over the whole turbidity range: the gradation factor 1 + A e^{B/cos θ}
+  // tends to 1 with every derivative (the continuation is C∞).
+  for (const double t : {kMinTurbidity, 6.0, kMaxTurbidity}) {
+    CHECK(perez_luminance_coefficients(t).b < 0.0);
+    CHECK(perez_x_coefficients(t).b < 0.0);
+    CHECK(perez_y_coefficients(t).b < 0.0);
+  }
+  const Sky sky = make_sky(2.5, 80.0 * kDeg, 0.4);
+  for (const double a : {0.0, 0.4, 2.0, 3.5}) {
+    CAPTURE(a);
+    const Chromaticity above = sky_chromaticity(sky, direction_from_angles(89.9999 * kDeg, a));
+    const Chromaticity at = sky_chromaticity(sky, direction_from_angles(90.0 * kDeg, a));
+    const Chromaticity below = sky_chromaticity(sky, direction_from_angles(90.0001 * kDeg, a));
+    const Chromaticity deep = sky_chromaticity(sky, direction_from_angles(120.0 * kDeg, a));
+    // Continuous: 10⁻⁶ rad from the horizon, e^{B/cos θ} ≤ e^{−0.28·10⁶}; only γ moves.
+    CHECK(below.Y == doctest::Approx(above.Y).epsilon(1e-5));
+    CHECK(below.Y == doctest::Approx(at.Y).epsilon(1e-5));
+    CHECK(below.Y > 0.0);
+    // Below the horizon only γ varies: F = 1 + C e^{Dγ} + E cos²γ over F(0, θ_s), times Y_z.
+    const Vec3 d = direction_from_angles(120.0 * kDeg, a);
+    const double cos_gamma = d[0] * sky.model_sun_direction[0] + d[1] * sky.model_sun_direction[1] +
+                             d[2] * sky.model_sun_direction[2];
+    const double gamma = std::acos(cos_gamma);
+    const PerezCoefficients& k = sky.luminance;
+    const double f = 1.0 + k.c * std::exp(k.d * gamma) + k.e * cos_gamma * cos_gamma;
+    CHECK(deep.Y ==
+          doctest::Approx(sky.zenith_luminance * f / sky.perez_at_zenith_luminance).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("out-of-gamut sky colours stay negative in linear sRGB (no clamping)") {
+  // Near a low sun Preetham's chromaticities leave the sRGB gamut; the conversion is the linear
+  // matrix (documented): the radiance is what the model says, clamping belongs to display.
+  const Sky sky = make_sky(2.0, 89.0 * kDeg, 0.0);
+  bool negative = false;
+  for (double z = 60.0; z < 90.0; z += 0.5) {
+    for (double a = -0.5; a <= 0.5; a += 0.05) {
+      const Vec3 d = direction_from_angles(z * kDeg, a);
+      const Vec3 rgb = sky_radiance_rgb(sky, d);
+      const Vec3 xyz = sky_radiance_xyz(sky, d);
+      CHECK(rgb == xyz_to_linear_srgb(xyz));
+      negative = negative || rgb[0] < 0.0 || rgb[1] < 0.0 || rgb[2] < 0.0;
+    }
+  }
+  CHECK(negative);
+}

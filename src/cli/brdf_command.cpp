@@ -8,16 +8,19 @@
 
 #include "cli/text.h"
 #include "core/math.h"
-#include "shading/ocean_lighting.h"
+#include "shading/lighting_terms.h"
 
 namespace oceanref::cli {
 
 namespace {
 struct BrdfFlags {
   std::string view, sun, normal = "0,1,0", sigma2, wind = "0", turbidity = "2.5",
-                         sea = "0.0039216,0.0156863,0.0470588", fresnel = "exact", erfc = "exact";
-  int order = 32;
-  int sun_order = 8;
+                         sea = "0.0039216,0.0156863,0.0470588", fresnel = "exact", erfc = "exact",
+                         accuracy = "reference";
+  ShadingSettings defaults;  // the renderer's: the same settings give the same numbers
+  double tolerance = defaults.tolerance;
+  int order = defaults.sky_order;
+  int sun_order = defaults.sun_order;
 };
 
 void row(std::ostream& out, const std::string& name, double v) {
@@ -27,6 +30,13 @@ void rows(std::ostream& out, const std::string& name, const Vec3& v) {
   row(out, name + ".R", v[0]);
   row(out, name + ".G", v[1]);
   row(out, name + ".B", v[2]);
+}
+// A term and its estimated error: NAME.R, NAME.G, NAME.B, NAME.R_error, ….
+void rows(std::ostream& out, const std::string& name, const Vec3& v, const Vec3& error) {
+  rows(out, name, v);
+  row(out, name + ".R_error", error[0]);
+  row(out, name + ".G_error", error[1]);
+  row(out, name + ".B_error", error[2]);
 }
 }  // namespace
 
@@ -49,16 +59,23 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
   cmd->add_option("--sea-colour", f->sea,
                   "r,g,b sea colour (the demo's 10/255, 40/255, 120/255 x 0.1)")
       ->capture_default_str();
-  cmd->add_option("--order", f->order, "Gauss-Hermite order per axis for the sky and mean Fresnel")
-      ->check(CLI::Range(1, 512))
+  cmd->add_option("--accuracy", f->accuracy,
+                  "reference (each integral converged to --tolerance, with its error estimate) | "
+                  "fast (fixed orders --order, --sun-order; errors are |fast - reference| + the "
+                  "reference's estimate); as the scene key shading.accuracy")
+      ->capture_default_str();
+  cmd->add_option("--tolerance", f->tolerance,
+                  "reference: relative tolerance of each integral, in [1e-10, 1e-2]")
+      ->capture_default_str();
+  cmd->add_option("--order", f->order,
+                  "fast: Gauss-Hermite order per axis for the sky and mean Fresnel, 1-1024")
       ->capture_default_str();
   cmd->add_option("--sun-order", f->sun_order,
-                  "Gauss-Legendre order over the sun disk (0: point sun)")
-      ->check(CLI::Range(0, 256))
+                  "fast: Gauss-Legendre order over the sun disk (0: point sun), 0-256")
       ->capture_default_str();
   cmd->add_option("--fresnel", f->fresnel, "exact | schlick")->capture_default_str();
   cmd->add_option("--erfc", f->erfc, "exact | rational")->capture_default_str();
-  return [f](std::ostream& out) {
+  return [f, cmd](std::ostream& out) {
     const Vec3 view = parse_unit_vector("--view", f->view);
     const Vec3 sun = parse_unit_vector("--sun", f->sun);
     const Vec3 normal = parse_unit_vector("--normal", f->normal);
@@ -89,16 +106,48 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
     } else if (f->erfc != "exact") {
       throw UsageError("--erfc", "expected exact or rational, got '" + f->erfc + "'");
     }
+    ShadingSettings shading;
+    shading.brdf = options;
+    shading.sea_colour = {sea[0], sea[1], sea[2]};
+    if (f->accuracy == "fast") {
+      shading.accuracy = LightingAccuracy::fast;
+    } else if (f->accuracy != "reference") {
+      throw UsageError("--accuracy", "expected reference or fast, got '" + f->accuracy + "'");
+    }
+    const bool fast = shading.accuracy == LightingAccuracy::fast;
+    if (fast && cmd->count("--tolerance") > 0) {
+      throw UsageError("--tolerance", "applies to --accuracy reference only");
+    }
+    for (const char* flag : {"--order", "--sun-order"}) {
+      if (!fast && cmd->count(flag) > 0) {
+        throw UsageError(flag,
+                         "applies to --accuracy fast only (reference converges to "
+                         "--tolerance)");
+      }
+    }
+    if (!(f->tolerance >= kMinLightingTolerance && f->tolerance <= kMaxLightingTolerance)) {
+      throw UsageError("--tolerance",
+                       "must be in [1e-10, 1e-2], got " + format_number(f->tolerance));
+    }
+    if (f->order < 1 || f->order > kMaxQuadratureOrder) {
+      throw UsageError("--order", "must be in [1, 1024], got " + std::to_string(f->order));
+    }
+    if (f->sun_order < 0 || f->sun_order > 256) {
+      throw UsageError("--sun-order", "must be in [0, 256], got " + std::to_string(f->sun_order));
+    }
+    shading.tolerance = f->tolerance;
+    shading.sky_order = f->order;
+    shading.sun_order = f->sun_order;
     const double sun_zenith = math::acos(std::fmin(std::fmax(sun[1], -1.0), 1.0));
     const Sky sky = make_sky(turbidity, sun_zenith, math::atan2(sun[2], sun[0]));
     const SurfaceFrame frame = wind_frame(normal, wind * std::numbers::pi / 180.0);
     const SlopeVariance s{s2[0], s2[1]};
     const BrdfTerms t = ocean_brdf(sun, view, frame, s, options);
-    const double fresnel_mean = mean_fresnel(view, frame, s, f->order, options);
-    const double reflected =
-        reflected_sun(sun, kSunAngularRadius, view, frame, s, f->sun_order, options);
-    const Vec3 l_sun = sun_radiance_rgb(sky);
-    const SkyIrradiance e_sky = sky_irradiance(sky);
+    const FrameLighting light = frame_lighting(sky, shading);
+    const LightingTerms terms = lighting_terms(shading, sky, light, view, frame, s, true);
+    // The shortcuts of real-time shaders, with this mode's F̄ and a Gauss–Hermite rule (the fast
+    // order, or 64 for reference) for the filtered sky.
+    const int shortcut_order = fast ? f->order : 64;
     out << "quantity,value\n";
     row(out, "zeta_x", t.zeta_x);
     row(out, "zeta_y", t.zeta_y);
@@ -109,16 +158,21 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
     row(out, "Lambda_L", t.lambda_light);
     row(out, "F", t.fresnel);
     row(out, "brdf_cos", t.brdf_cos);
-    row(out, "F_mean", fresnel_mean);
+    row(out, "F_mean", terms.mean_fresnel);
+    row(out, "F_mean_error", terms.mean_fresnel_error);
     row(out, "F_mean_fit", mean_fresnel_fit(view, frame, s));
-    row(out, "sun_reflectance", reflected);
-    rows(out, "L_sun_incident", l_sun);
-    rows(out, "L_sun", {reflected * l_sun[0], reflected * l_sun[1], reflected * l_sun[2]});
-    rows(out, "L_sky", reflected_sky(view, frame, s, sky, f->order, options));
-    rows(out, "L_sky_filtered", reflected_sky_filtered(view, frame, s, sky, f->order, options));
-    rows(out, "L_sky_mirror", reflected_sky_mirror(view, frame, s, sky, f->order, options));
-    rows(out, "E_sky", e_sky.rgb);
-    rows(out, "L_sea", refracted_sea(fresnel_mean, {sea[0], sea[1], sea[2]}, e_sky.rgb));
+    row(out, "sun_reflectance", terms.sun_reflectance);
+    row(out, "sun_reflectance_error", terms.sun_reflectance_error);
+    rows(out, "L_sun_incident", light.sun_radiance);
+    rows(out, "L_sun", terms.sun, terms.sun_error);
+    rows(out, "L_sky", terms.sky, terms.sky_error);
+    rows(out, "L_sky_filtered",
+         reflected_sky_filtered(view, frame, s, sky, shortcut_order, options));
+    rows(out, "L_sky_mirror", reflected_sky_mirror(view, frame, s, sky, shortcut_order, options));
+    rows(out, "E_sky", light.sky_irradiance);
+    rows(out, "L_sea", terms.sea, terms.sea_error);
+    row(out, "evaluations", static_cast<double>(terms.evaluations));
+    row(out, "converged", terms.converged ? 1.0 : 0.0);
   };
 }
 

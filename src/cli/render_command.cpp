@@ -117,6 +117,8 @@ RenderedScene render_scene(const std::string& path, int threads, int spp, bool a
   }
   RenderedScene r;
   r.settings = p->scene.image;
+  // The error layer of a fast render is its difference from the reference (computed as well).
+  p->job.estimate_fast_error = aov;
   r.image = render(p->job, p->unresolved);
   const RenderedImage& image = r.image;
   ExrImage& exr = r.exr;
@@ -136,7 +138,16 @@ RenderedScene render_scene(const std::string& path, int threads, int spp, bool a
         {"depth", 1, std::vector<float>(image.depth.begin(), image.depth.end())});
     exr.channels.push_back(
         {"coverage", 1, std::vector<float>(image.coverage.begin(), image.coverage.end())});
+    for (ExrChannel& c : channels_of("lighting_error.", image.lighting_error)) {
+      exr.channels.push_back(std::move(c));
+    }
   }
+  const ShadingSettings& shading = p->scene.shading;
+  const bool reference = shading.accuracy == LightingAccuracy::reference;
+  exr.attributes["oceanref.lighting_accuracy"] =
+      reference ? "reference, relative tolerance " + format_number(shading.tolerance)
+                : "fast, sky_order " + std::to_string(shading.sky_order) + ", sun_order " +
+                      std::to_string(shading.sun_order);
   exr.srgb_chromaticities = true;
   exr.attributes["oceanref.version"] = kVersion;
   exr.attributes["oceanref.scene_sha256"] = sha256_hex(p->scene.canonical);
@@ -147,6 +158,25 @@ RenderedScene render_scene(const std::string& path, int threads, int spp, bool a
   exr.attributes["oceanref.unresolved_slope_variance"] =
       format_number(image.unresolved.upwind) + "," + format_number(image.unresolved.crosswind);
   return r;
+}
+
+LightingErrorSummary summarize_lighting_error(const RenderedImage& image) {
+  LightingErrorSummary summary;
+  std::vector<double> relative;
+  for (std::size_t i = 0; i < image.lighting_error.size(); ++i) {
+    if (!(image.coverage[i] > 0.0)) continue;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double e = image.lighting_error[i][c];
+      if (e > 0.0) summary.estimated = true;
+      const double l = std::fabs(image.radiance[i][c]);
+      relative.push_back(l > 0.0 ? e / l : (e > 0.0 ? HUGE_VAL : 0.0));
+    }
+  }
+  if (!summary.estimated) return summary;
+  std::sort(relative.begin(), relative.end());
+  summary.max_relative = relative.back();
+  summary.median_relative = relative[relative.size() / 2];
+  return summary;
 }
 
 std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
@@ -169,7 +199,9 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   cmd->add_flag(
       "--aov", f->aov,
       "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
-      "sun.RGB, sky.RGB, sea.RGB, foam.RGB");
+      "sun.RGB, sky.RGB, sea.RGB, foam.RGB, lighting_error.RGB (the estimated absolute error of "
+      "the lighting per channel; for shading.accuracy fast, |fast - reference| + the reference's "
+      "estimate, which costs a reference render)");
   return [f](std::ostream& out) {
     const RenderedScene r =
         render_scene(f->scene, resolve_threads(f->threads), f->spp, f->aov, isatty(STDERR_FILENO));
@@ -180,6 +212,17 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     if (!f->png.empty()) write_preview(f->png, r.image, r.settings);
     out << "pixel_sha256," << hash << '\n';
     out << "radiance_f64_sha256," << r.radiance_f64_sha256 << '\n';
+    const LightingErrorSummary e = summarize_lighting_error(r.image);
+    if (e.estimated) {
+      out << "lighting_error_max_relative," << format_number(e.max_relative) << '\n';
+      out << "lighting_error_median_relative," << format_number(e.median_relative) << '\n';
+    }
+    out << "unconverged_samples," << r.image.unconverged_samples << '\n';
+    if (r.image.unconverged_samples > 0) {
+      progress("oceanref", "warning: " + std::to_string(r.image.unconverged_samples) +
+                               " samples missed the lighting tolerance (their error estimates "
+                               "are in --aov lighting_error)");
+    }
   };
 }
 
@@ -192,7 +235,9 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "probe",
       "Every intermediate value behind one pixel: per sample the triangle hit, x0, the "
-      "displaced position, fields, normal, F_mean, each lighting term; then the pixel.");
+      "displaced position, fields, normal, F_mean, each lighting term and its estimated error "
+      "(reference accuracy: the integrator's estimate; fast: |fast - reference| + that "
+      "estimate); then the pixel.");
   cmd->add_option("SCENE", f->scene, "scene file (JSON)")->required();
   cmd->add_option("--pixel", f->pixel, "x,y (column, row from the top-left)")->required();
   cmd->add_option("--threads", f->threads, "worker threads (default: all cores)");
@@ -200,6 +245,7 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
     const int threads = resolve_threads(f->threads);
     const std::vector<double> xy = parse_number_list("--pixel", f->pixel);
     const auto p = prepare(f->scene, threads, 0);
+    p->job.estimate_fast_error = true;  // probe prints each term's error in either mode
     if (xy.size() != 2 || xy[0] < 0 || xy[1] < 0 || xy[0] >= p->scene.image.width ||
         xy[1] >= p->scene.image.height || xy[0] != std::floor(xy[0]) ||
         xy[1] != std::floor(xy[1])) {
@@ -213,7 +259,9 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
     out << "sample,image_x,image_y,hit,depth,triangle,x0,z0,x,y,z,height,slope_x,slope_z,jacobian,"
            "normal_x,"
            "normal_y,normal_z,view_x,view_y,view_z,sigma2_upwind,sigma2_crosswind,F_mean,"
-           "sun_R,sun_G,sun_B,sky_R,sky_G,sky_B,sea_R,sea_G,sea_B,foam_coverage,R,G,B\n";
+           "sun_R,sun_G,sun_B,sky_R,sky_G,sky_B,sea_R,sea_G,sea_B,foam_coverage,R,G,B,F_mean_error,"
+           "sun_error_R,sun_error_G,sun_error_B,sky_error_R,sky_error_G,sky_error_B,sea_error_R,"
+           "sea_error_G,sea_error_B,error_R,error_G,error_B,evaluations,converged\n";
     Vec3 pixel{};
     for (std::size_t i = 0; i < samples.size(); ++i) {
       const SampleProbe& s = samples[i];
@@ -249,7 +297,22 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
                                s.whitecap_coverage,
                                s.radiance[0],
                                s.radiance[1],
-                               s.radiance[2]};
+                               s.radiance[2],
+                               s.mean_fresnel_error,
+                               s.sun_error[0],
+                               s.sun_error[1],
+                               s.sun_error[2],
+                               s.sky_error[0],
+                               s.sky_error[1],
+                               s.sky_error[2],
+                               s.sea_error[0],
+                               s.sea_error[1],
+                               s.sea_error[2],
+                               s.lighting_error[0],
+                               s.lighting_error[1],
+                               s.lighting_error[2],
+                               static_cast<double>(s.evaluations),
+                               s.converged ? 1.0 : 0.0};
       out << i << ',' << format_number(s.image_x) << ',' << format_number(s.image_y) << ','
           << (s.hit ? 1 : 0);
       for (const double v : values) out << ',' << format_number(v);

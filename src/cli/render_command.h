@@ -20,6 +20,15 @@ struct RenderedScene {
   RenderedImage image;
   ImageSettings settings;
 };
+// The estimated lighting error relative to the radiance, over the channels of the pixels that
+// see the sea (`estimated` false when the image carries no estimate).
+struct LightingErrorSummary {
+  bool estimated = false;
+  double max_relative = 0.0;
+  double median_relative = 0.0;
+};
+LightingErrorSummary summarize_lighting_error(const RenderedImage& image);
+
 RenderedScene render_scene(const std::string& path, int threads, int spp, bool aov,
                            bool show_progress);
 

@@ -82,19 +82,8 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
   return g;
 }
 
-// Everything the shading of a frame shares: computed once, not per sample.
-struct Lighting {
-  Vec3 sun_direction;
-  Vec3 sun_radiance;                  // L_sun, cd/m² per channel
-  Vec3 sky_irradiance;                // E_sky on a horizontal plane
-  double cos_sun_radius;              // the sun disk's edge
-  double sun_solid_angle;             // Ω_sun
-  QuadratureRule hermite;             // Gauss–Hermite rule of the sky and F̄ (order sky_order)
-  std::vector<SunDiskNode> sun_disk;  // the nodes of the sun-disk rule (order sun_order)
-};
-
 SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const Geometry& g,
-                         const Fragment& f, const glm::dvec3& ray, const Lighting& light,
+                         const Fragment& f, const glm::dvec3& ray, const FrameLighting& light,
                          const WindSlopeVariance& unresolved) {
   SampleProbe p;
   const ShadingSettings& sh = job.shading;
@@ -130,16 +119,22 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
   }
   const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   const SlopeVariance s{unresolved.upwind, unresolved.crosswind};
-  if (sh.sun) {
-    const double reflectance = reflected_sun(light.sun_disk, p.view, frame, s, sh.brdf);
-    for (std::size_t c = 0; c < 3; ++c) p.sun[c] = reflectance * light.sun_radiance[c];
+  const LightingTerms terms =
+      lighting_terms(sh, job.sky, light, p.view, frame, s, job.estimate_fast_error);
+  p.sun = terms.sun;
+  p.sky = terms.sky;
+  p.sea = terms.sea;
+  p.mean_fresnel = terms.mean_fresnel;
+  p.mean_fresnel_error = terms.mean_fresnel_error;
+  p.sun_error = terms.sun_error;
+  p.sky_error = terms.sky_error;
+  p.sea_error = terms.sea_error;
+  p.evaluations = terms.evaluations;
+  p.converged = terms.converged;
+  for (std::size_t c = 0; c < 3; ++c) {
+    p.radiance[c] = p.sun[c] + p.sky[c] + p.sea[c];
+    p.lighting_error[c] = p.sun_error[c] + p.sky_error[c] + p.sea_error[c];
   }
-  if (sh.sky) p.sky = reflected_sky(p.view, frame, s, job.sky, light.hermite, sh.brdf);
-  if (sh.sea) {
-    p.mean_fresnel = mean_fresnel(p.view, frame, s, light.hermite, sh.brdf);
-    p.sea = refracted_sea(p.mean_fresnel, sh.sea_colour, light.sky_irradiance);
-  }
-  for (std::size_t c = 0; c < 3; ++c) p.radiance[c] = p.sun[c] + p.sky[c] + p.sea[c];
   if (sh.whitecaps) {
     // Per-sample indicator; the S×S samples of a pixel give its footprint coverage.
     p.whitecap_coverage = whitecap_coverage(p.fields.jacobian, 0.0, sh.whitecap_threshold);
@@ -150,19 +145,9 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
     }
     p.foam = foam_radiance(sh.foam_albedo, e_sun, light.sky_irradiance);
     p.radiance = mix_whitecaps(p.radiance, p.foam, p.whitecap_coverage);
+    for (double& e : p.lighting_error) e *= 1.0 - p.whitecap_coverage;
   }
   return p;
-}
-
-Lighting lighting_of(const Sky& sky, const ShadingSettings& sh) {
-  return {sky.sun_direction,
-          sun_radiance_rgb(sky),
-          sky_irradiance(sky).rgb,
-          math::cos(kSunAngularRadius),
-          2.0 * std::numbers::pi * (1.0 - math::cos(kSunAngularRadius)),
-          gauss_hermite(sh.sky_order),
-          sun_disk_nodes(sky.sun_direction, kSunAngularRadius,
-                         sh.sun_order > 0 ? gauss_legendre(sh.sun_order) : QuadratureRule{})};
 }
 
 std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const SampleGrid& grid) {
@@ -214,7 +199,7 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const std::vector<Fragment> fragments = raster_pass(job, g, grid);
   lap(&RenderTimes::raster);
-  const Lighting light = lighting_of(job.sky, job.shading);
+  const FrameLighting light = frame_lighting(job.sky, job.shading);
   const auto pixels =
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   image.radiance.assign(pixels, Vec3{});
@@ -226,11 +211,16 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   image.normal.assign(pixels, Vec3{});
   image.x0.assign(pixels, Vec3{});
   image.coverage.assign(pixels, 0.0);
+  image.lighting_error.assign(pixels, Vec3{});
+  std::atomic<long> unconverged{0};
+  std::atomic<long> evaluations{0};
   const int s = job.samples_per_axis;
   const double per_sample = 1.0 / (s * s);
   std::atomic<int> rows_done{0};
   const int report_every = std::max(1, image.height / 50);
   parallel_for(image.height, job.threads, [&](int y) {
+    long row_unconverged = 0;
+    long row_evaluations = 0;
     for (int x = 0; x < image.width; ++x) {
       const std::size_t pixel =
           static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
@@ -252,7 +242,10 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
             image.sky[pixel][c] += per_sample * p.sky[c];
             image.sea[pixel][c] += per_sample * p.sea[c];
             image.foam[pixel][c] += per_sample * p.whitecap_coverage * p.foam[c];
+            image.lighting_error[pixel][c] += per_sample * p.lighting_error[c];
           }
+          if (!p.converged) ++row_unconverged;
+          row_evaluations += p.evaluations;
           if (p.hit) {
             image.depth[pixel] += p.depth;
             for (std::size_t c = 0; c < 3; ++c) image.normal[pixel][c] += p.normal[c];
@@ -271,12 +264,16 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
         }
       }
     }
+    unconverged += row_unconverged;
+    evaluations += row_evaluations;
     const int done = ++rows_done;
     if (job.progress && (done % report_every == 0 || done == image.height)) {
       job.progress(static_cast<double>(done) / image.height);
     }
   });
   lap(&RenderTimes::shading);
+  image.unconverged_samples = unconverged;
+  image.integrand_evaluations = evaluations;
   return image;
 }
 
@@ -287,7 +284,7 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVarian
   const Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const std::vector<Fragment> fragments = raster_pass(job, g, grid);
-  const Lighting light = lighting_of(job.sky, job.shading);
+  const FrameLighting light = frame_lighting(job.sky, job.shading);
   std::vector<SampleProbe> out;
   const int s = job.samples_per_axis;
   for (int b = 0; b < s; ++b) {

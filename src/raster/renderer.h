@@ -11,25 +11,11 @@
 #include "raster/camera.h"
 #include "raster/projected_grid.h"
 #include "raster/rasterizer.h"
-#include "shading/ocean_lighting.h"
+#include "shading/lighting_terms.h"
 #include "spectrum/moments.h"
 #include "waves/ocean.h"
 
 namespace oceanref {
-
-struct ShadingSettings {
-  bool sun = true;
-  bool sky = true;
-  bool sea = true;
-  bool whitecaps = false;
-  BrdfOptions brdf;
-  int sky_order = 4;  // Gauss–Hermite order per axis of the reflected sky and F̄
-  int sun_order = 2;  // Gauss–Legendre order over the sun disk (0: point sun)
-  Vec3 sea_colour{10.0 / 255.0 * 0.1, 40.0 / 255.0 * 0.1, 120.0 / 255.0 * 0.1};
-  double foam_albedo = 0.8;
-  double whitecap_threshold = 0.0;  // foam where det J < threshold
-  Interpolation interpolation = Interpolation::bicubic;
-};
 
 struct RenderJob {
   const Ocean* ocean = nullptr;
@@ -40,6 +26,10 @@ struct RenderJob {
   ShadingSettings shading;
   int samples_per_axis = 2;  // S: S×S stratified samples per pixel
   int threads = 1;
+  // Fast accuracy only: also compute the reference lighting of every sample, so that the
+  // lighting error is |fast − reference| + the reference's estimate (reference accuracy always
+  // reports its estimate).
+  bool estimate_fast_error = false;
   // Called with the finished share of image rows (0…1) now and then during shading, from any
   // worker thread; for progress display only.
   std::function<void(double)> progress;
@@ -56,6 +46,11 @@ struct RenderedImage {
   std::vector<Vec3> normal;               // mean shading normal of the sea samples, 0 if none
   std::vector<Vec3> x0;  // mean undisplaced position (x0, 0, z0) of the sea samples
   std::vector<double> coverage;
+  // Estimated absolute error of `radiance` from the lighting integrals, per channel (0 where
+  // not estimated: fast accuracy without estimate_fast_error).
+  std::vector<Vec3> lighting_error;
+  long unconverged_samples = 0;  // samples whose reference integrals missed the tolerance
+  long integrand_evaluations = 0;
   WindSlopeVariance unresolved;  // the BRDF roughness used
   double displacement_bound = 0.0;
 };
@@ -89,6 +84,11 @@ struct SampleProbe {
   double mean_fresnel = 0.0;
   Vec3 sun{}, sky{}, sea{}, foam{}, radiance{};
   double whitecap_coverage = 0.0;
+  // Estimated absolute errors of the terms (see RenderedImage::lighting_error).
+  double mean_fresnel_error = 0.0;
+  Vec3 sun_error{}, sky_error{}, sea_error{}, lighting_error{};
+  long evaluations = 0;  // integrand evaluations of the reference integrals
+  bool converged = true;
 };
 // The shading of one sample of the image (its fragment from a full raster pass).
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/fp_environment.h"
+#include "shading/reference_lighting.h"
 
 namespace oceanref {
 
@@ -298,8 +299,8 @@ void parse_rendering(const Section& top, Scene& scene) {
   a.turbidity = atmosphere.number("turbidity", a.turbidity, kMinTurbidity, kMaxTurbidity);
   const Section shading(
       top.has("shading") ? top.at("shading") : empty, "shading",
-      {"sun", "sky", "sea", "whitecaps", "fresnel", "erfc", "sky_order", "sun_order", "sea_colour",
-       "foam_albedo", "whitecap_threshold", "interpolation"});
+      {"sun", "sky", "sea", "whitecaps", "fresnel", "erfc", "accuracy", "tolerance", "sky_order",
+       "sun_order", "sea_colour", "foam_albedo", "whitecap_threshold", "interpolation"});
   ShadingSettings& h = scene.shading;
   h.sun = shading.boolean("sun", true);
   h.sky = shading.boolean("sky", true);
@@ -315,6 +316,27 @@ void parse_rendering(const Section& top, Scene& scene) {
     throw SceneError("shading.erfc", "expected exact or rational; got '" + erfc + "'");
   }
   h.brdf.erfc = erfc == "exact" ? ErfcForm::exact : ErfcForm::rational;
+  const std::string accuracy = shading.text("accuracy", "reference");
+  if (accuracy != "reference" && accuracy != "fast") {
+    throw SceneError("shading.accuracy", "expected reference or fast; got '" + accuracy + "'");
+  }
+  h.accuracy = accuracy == "reference" ? LightingAccuracy::reference : LightingAccuracy::fast;
+  // Each setting belongs to one mode: a key of the other is a mistake, not something to ignore.
+  const bool fast = h.accuracy == LightingAccuracy::fast;
+  for (const char* key : {"sky_order", "sun_order"}) {
+    if (!fast && shading.has(key)) {
+      throw SceneError(std::string("shading.") + key,
+                       "applies to shading.accuracy \"fast\" only (the reference mode is "
+                       "converged to shading.tolerance)");
+    }
+  }
+  if (fast && shading.has("tolerance")) {
+    throw SceneError("shading.tolerance",
+                     "applies to shading.accuracy \"reference\" only (fast uses sky_order and "
+                     "sun_order)");
+  }
+  h.tolerance =
+      shading.number("tolerance", h.tolerance, kMinLightingTolerance, kMaxLightingTolerance);
   h.sky_order = shading.integer("sky_order", h.sky_order, 1, 128);
   h.sun_order = shading.integer("sun_order", h.sun_order, 0, 64);
   const glm::dvec3 sea =

@@ -148,12 +148,15 @@ double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const Sur
   return reflected_sun(sun_disk_nodes(sun, radius, r), view, f, s, options);
 }
 
-std::vector<SunDiskNode> sun_disk_nodes(const Vec3& sun, double radius, const QuadratureRule& r) {
-  if (r.nodes.empty()) return {{sun, 2.0 * kPi * (1.0 - math::cos(radius))}};
-  // Orthonormal basis around the sun direction.
+std::array<Vec3, 2> sun_disk_axes(const Vec3& sun) {
   const Vec3 u = normalized(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
                                                     : cross(sun, Vec3{1.0, 0.0, 0.0}));
-  const Vec3 w = cross(sun, u);
+  return {u, cross(sun, u)};
+}
+
+std::vector<SunDiskNode> sun_disk_nodes(const Vec3& sun, double radius, const QuadratureRule& r) {
+  if (r.nodes.empty()) return {{sun, 2.0 * kPi * (1.0 - math::cos(radius))}};
+  const auto [u, w] = sun_disk_axes(sun);
   const int azimuths = 4 * static_cast<int>(r.nodes.size());
   std::vector<SunDiskNode> nodes;
   for (std::size_t i = 0; i < r.nodes.size(); ++i) {

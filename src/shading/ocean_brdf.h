@@ -103,6 +103,9 @@ double reflected_sun(const Vec3& sun, double sun_radius, const Vec3& view,
 double reflected_sun(const Vec3& sun, double sun_radius, const Vec3& view,
                      const SurfaceFrame& frame, SlopeVariance s, const QuadratureRule& disk,
                      const BrdfOptions& options = {});
+// Two unit vectors completing the sun direction S to an orthonormal basis (u, w = S × u): the
+// axes of the sun disk's tangent plane.
+std::array<Vec3, 2> sun_disk_axes(const Vec3& sun);
 // A node of the sun-disk rule: a direction L inside the disk and its weight [sr].
 struct SunDiskNode {
   Vec3 direction;

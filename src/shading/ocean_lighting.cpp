@@ -19,39 +19,44 @@ Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, con
   return reflected_sky(view, f, s, sky, gauss_hermite(order), options);
 }
 
+Vec3 reflected_sky_per_slope(double zx, double zy, const Vec3& view, const ViewTerms& v,
+                             const SurfaceFrame& f, SlopeVariance s, const Sky& sky,
+                             const BrdfOptions& options) {
+  // Facet normal m ∝ ñ = N − ζ_x T_x − ζ_y T_y; V·ñ its area projected towards V.
+  const double projected = v.cos_theta - zx * dot(view, f.tangent_x) - zy * dot(view, f.tangent_y);
+  if (!(projected > 0.0)) return {0.0, 0.0, 0.0};
+  const double length = std::sqrt(1.0 + zx * zx + zy * zy);
+  const double cos_vm = projected / length;
+  Vec3 light{};  // the mirror of V about m
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double m = (f.normal[k] - zx * f.tangent_x[k] - zy * f.tangent_y[k]) / length;
+    light[k] = 2.0 * cos_vm * m - view[k];
+  }
+  const double ln = dot(light, f.normal);
+  if (!(ln > 0.0)) return {0.0, 0.0, 0.0};
+  const double lambda_light =
+      smith_lambda(ln, directional_slope_variance(light, f, s), options.erfc);
+  // 1/(zV(1 + Λ_V + Λ_L)) written so that it stays finite at grazing view.
+  const double weight = projected / (v.smith.visible_area + v.cos_theta * lambda_light) *
+                        fresnel_reflectance(cos_vm, options.fresnel);
+  Vec3 radiance = sky_radiance_rgb(sky, light);
+  for (double& c : radiance) c *= weight;
+  return radiance;
+}
+
 Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, const Sky& sky,
                    const QuadratureRule& g, const BrdfOptions& options) {
   Vec3 sum{0.0, 0.0, 0.0};
-  const double vn = dot(view, f.normal);
-  if (!(vn > 0.0)) return sum;
-  const double vx = dot(view, f.tangent_x);
-  const double vy = dot(view, f.tangent_y);
-  const double sigma2_view = directional_slope_variance(view, f, s);
-  const double view_area = visible_projected_area(vn, sigma2_view, options.erfc);
+  const ViewTerms v = view_terms(view, f, s, options.erfc);
+  if (!(v.cos_theta > 0.0)) return sum;
+  // p(ζ)dζ = e^{−|t|²}/π dt with ζ = √(2σ²)·t: the Gauss–Hermite weights over π.
   for (std::size_t i = 0; i < g.nodes.size(); ++i) {
     const double zx = std::sqrt(2.0 * s.x) * g.nodes[i];
     for (std::size_t j = 0; j < g.nodes.size(); ++j) {
       const double zy = std::sqrt(2.0 * s.y) * g.nodes[j];
-      const double projected = vn - zx * vx - zy * vy;  // V·ñ
-      if (!(projected > 0.0)) continue;
-      const double length = std::sqrt(1.0 + zx * zx + zy * zy);
-      const double cos_vm = projected / length;
-      Vec3 m{};
-      for (std::size_t k = 0; k < 3; ++k) {
-        m[k] = (f.normal[k] - zx * f.tangent_x[k] - zy * f.tangent_y[k]) / length;
-      }
-      Vec3 light{};
-      for (std::size_t k = 0; k < 3; ++k) light[k] = 2.0 * cos_vm * m[k] - view[k];
-      const double ln = dot(light, f.normal);
-      if (!(ln > 0.0)) continue;
-      const double lambda_light =
-          smith_lambda(ln, directional_slope_variance(light, f, s), options.erfc);
-      // G/(V·N) = 1/(zV(1 + Λ_V + Λ_L)), finite at grazing view.
-      const double weight = g.weights[i] * g.weights[j] / std::numbers::pi * projected /
-                            (view_area + vn * lambda_light) *
-                            fresnel_reflectance(cos_vm, options.fresnel);
-      const Vec3 radiance = sky_radiance_rgb(sky, light);
-      for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * radiance[k];
+      const Vec3 l = reflected_sky_per_slope(zx, zy, view, v, f, s, sky, options);
+      const double weight = g.weights[i] * g.weights[j] / std::numbers::pi;
+      for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * l[k];
     }
   }
   return sum;

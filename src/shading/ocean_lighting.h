@@ -8,6 +8,11 @@
 
 namespace oceanref {
 
+// The sky that facets of slope ζ reflect into V, per unit of p(ζ)dζ: the integrand of the next
+// function, F(V·m) ⟨V·ñ⟩₊ L_sky(L(m)) / (V·N (1 + Λ_V + Λ_L)), 0 where V·ñ ≤ 0 or L·N ≤ 0.
+Vec3 reflected_sky_per_slope(double zeta_x, double zeta_y, const Vec3& view, const ViewTerms& v,
+                             const SurfaceFrame& frame, SlopeVariance s, const Sky& sky,
+                             const BrdfOptions& options);
 // The sky reflected into V: ∫ f(L, V) L_sky(L) cos θ_L dω_L, written over facet slopes as
 // ∫ F(V·m) G(L, V) L_sky(L(m)) ⟨V·ñ⟩₊/(V·N) p(ζ) dζ with L(m) the mirror of V about m and
 // G = 1/(1 + Λ_V + Λ_L) (Bruneton 2010 eq. 8 integrated over the sky), by Gauss–Hermite

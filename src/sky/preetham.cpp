@@ -120,10 +120,12 @@ Sky make_sky(double turbidity, double sun_zenith, double sun_azimuth) {
 }
 
 Chromaticity sky_chromaticity(const Sky& sky, const Vec3& direction) {
-  if (!(direction[1] > 0.0)) return {sky.zenith_x, sky.zenith_y, 0.0};
   // For the unit direction d and sun s: cos θ = d_y and cos γ = d·s, with γ from the accurate
-  // half-angle form (one transcendental for the three coefficient sets).
-  const PerezAngles angles{std::fmin(direction[1], 1.0),
+  // half-angle form (one transcendental for the three coefficient sets). Below the horizon
+  // (d_y ≤ 0) cos θ is held at 0, where the gradation factor 1 + A e^{B/cos θ} reaches its limit
+  // 1 with every derivative 0 (B < 0): the sky is continued smoothly by its horizon (README,
+  // "Sky below the horizon").
+  const PerezAngles angles{std::clamp(direction[1], 0.0, 1.0),
                            angle_between(direction, sky.model_sun_direction),
                            std::clamp(dot(direction, sky.model_sun_direction), -1.0, 1.0)};
   return {sky.zenith_x * perez(angles, sky.x) / sky.perez_at_zenith_x,

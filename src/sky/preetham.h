@@ -9,7 +9,12 @@
 // Validity: turbidity T ∈ [2, 10] (the range of Preetham's fits; below ~1.7 the Perez factor
 // 1 + A e^{B/cos θ} turns negative at the zenith); sun zenith angle θ_s ∈ [0°, 90°]. Below the
 // horizon (θ_s > 90°) the sun radiance is 0 and the sky keeps its θ_s = 90° limit. Directions
-// below the horizon (d_y ≤ 0) see no sky: radiance 0 (there is no ground model).
+// below the horizon (d_y ≤ 0) see the sky's horizon limit: the Perez gradation factor
+// 1 + A e^{B/cos θ} is held at its value 1 at θ = 90°, γ is that of the direction itself. This
+// continuation is C^∞ across the horizon (every derivative of e^{B/cos θ} vanishes there as
+// B < 0), so the reflection integrals see no jump where a tilted facet mirrors V below the
+// horizon; physically such a ray meets the sea, whose grazing reflection (Fresnel → 1) shows the
+// horizon.
 #pragma once
 
 #include "sky/color.h"
@@ -66,7 +71,7 @@ Vec3 direction_from_angles(double zenith, double azimuth);
 struct Chromaticity {
   double x, y, Y;  // CIE xyY, Y in cd/m²
 };
-// Y = Y_z F(θ, γ)/F(0, θ_s), likewise x and y  (Preetham eq. 3–4); Y = 0 below the horizon.
+// Y = Y_z F(θ, γ)/F(0, θ_s), likewise x and y  (Preetham eq. 3–4); θ ≤ 90° (see above).
 Chromaticity sky_chromaticity(const Sky& sky, const Vec3& direction);
 Vec3 sky_radiance_xyz(const Sky& sky, const Vec3& direction);
 Vec3 sky_radiance_rgb(const Sky& sky, const Vec3& direction);

@@ -1,0 +1,72 @@
+// The lighting of one sample of the sea: the reflected sun, the reflected sky and the refracted
+// sea light with their estimated errors, by the reference integrals (reference_lighting.h) or
+// the fixed-order rules (ocean_lighting.h) as the scene's shading settings say. Shared by the
+// renderer and `oceanref brdf`, so both compute the same numbers from the same settings.
+#pragma once
+
+#include <vector>
+
+#include "shading/ocean_lighting.h"
+#include "shading/reference_lighting.h"
+#include "waves/ocean.h"
+
+namespace oceanref {
+
+// How the lighting integrals (reflected sun, reflected sky, F̄) are computed (DESIGN.md,
+// "Accuracy contract").
+enum class LightingAccuracy {
+  reference,  // converged to `tolerance`, with error estimates (shading/reference_lighting.h)
+  fast,       // fixed-order rules of `sky_order` and `sun_order` (shading/ocean_lighting.h)
+};
+
+struct ShadingSettings {
+  bool sun = true;
+  bool sky = true;
+  bool sea = true;
+  bool whitecaps = false;
+  BrdfOptions brdf;
+  LightingAccuracy accuracy = LightingAccuracy::reference;
+  // Reference: each term's error ≤ max(tolerance·|term|, tolerance·10⁻³·E_sky/π) per channel.
+  double tolerance = 1e-6;
+  int sky_order = 4;  // fast: Gauss–Hermite order per axis of the reflected sky and F̄
+  int sun_order = 2;  // fast: Gauss–Legendre order over the sun disk (0: point sun)
+  Vec3 sea_colour{10.0 / 255.0 * 0.1, 40.0 / 255.0 * 0.1, 120.0 / 255.0 * 0.1};
+  double foam_albedo = 0.8;
+  double whitecap_threshold = 0.0;  // foam where det J < threshold
+  Interpolation interpolation = Interpolation::bicubic;
+};
+
+// Everything the shading of a frame shares: computed once, not per sample.
+struct FrameLighting {
+  Vec3 sun_direction;
+  Vec3 sun_radiance;                  // L_sun, cd/m² per channel
+  Vec3 sky_irradiance;                // E_sky on a horizontal plane
+  double cos_sun_radius;              // the sun disk's edge
+  double sun_solid_angle;             // Ω_sun
+  QuadratureRule hermite;             // fast: Gauss–Hermite rule of the sky and F̄ (sky_order)
+  std::vector<SunDiskNode> sun_disk;  // fast: the nodes of the sun-disk rule (sun_order)
+  Vec3 radiance_floor;                // reference: the absolute tolerance per channel
+  double sun_reflectance_floor;       // reference: the same for the sun's reflectance
+};
+FrameLighting frame_lighting(const Sky& sky, const ShadingSettings& shading);
+
+// The lighting terms of one sample and their estimated absolute errors.
+struct LightingTerms {
+  Vec3 sun{}, sky{}, sea{};
+  double sun_reflectance = 0.0;  // ∫_disk f cos θ_L dω: sun = sun_reflectance·L_sun
+  double mean_fresnel = 0.0;
+  double sun_reflectance_error = 0.0;
+  Vec3 sun_error{}, sky_error{}, sea_error{};
+  double mean_fresnel_error = 0.0;
+  long evaluations = 0;  // integrand evaluations of the reference integrals
+  bool converged = true;
+};
+// The terms for the view V at a surface frame with unresolved slope variance s. With reference
+// accuracy the errors are the integrators' estimates; with fast accuracy they are
+// |fast − reference| + the reference's estimate when `estimate_fast_error` (which costs the
+// reference integrals), else 0.
+LightingTerms lighting_terms(const ShadingSettings& shading, const Sky& sky,
+                             const FrameLighting& light, const Vec3& view,
+                             const SurfaceFrame& frame, SlopeVariance s, bool estimate_fast_error);
+
+}  // namespace oceanref

@@ -1,0 +1,263 @@
+#include "shading/reference_lighting.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <initializer_list>
+#include <numbers>
+#include <span>
+#include <vector>
+
+#include "core/math.h"
+#include "shading/adaptive_cubature.h"
+#include "shading/ocean_lighting.h"
+
+namespace oceanref {
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+constexpr double kT = kSlopeTruncation;
+
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// [lo, hi] split at the Gaussian's scale (t = −2, 0, 2: pieces on which e^{−t²} is smooth
+// enough for one Kronrod rule) and at the given points, ascending.
+std::vector<double> breakpoints_in(double lo, double hi, std::initializer_list<double> extra) {
+  std::vector<double> b{lo, hi, -2.0, 0.0, 2.0};
+  b.insert(b.end(), extra);
+  std::sort(b.begin(), b.end());
+  std::vector<double> inside;
+  for (const double x : b) {
+    if (x >= lo && x <= hi && (inside.empty() || x > inside.back())) inside.push_back(x);
+  }
+  return inside;
+}
+
+// An inner integral's tolerance such that, integrated over an outer range of the given length,
+// its errors use at most a quarter of the outer budget. `scale` is an a-priori estimate of the
+// outer integral (from a low-order rule): inner integrals whose share of it is small need not
+// be accurate relative to themselves (a factor 2 off in the estimate costs only evaluations).
+template <std::size_t N>
+CubatureTolerance<N> inner_tolerance(const CubatureTolerance<N>& outer, double outer_length,
+                                     const std::array<double, N>& scale) {
+  CubatureTolerance<N> inner = outer;
+  inner.relative = 0.25 * outer.relative;
+  const double length = std::fmax(outer_length, 1e-300);
+  for (std::size_t c = 0; c < N; ++c) {
+    inner.absolute[c] =
+        0.25 * std::fmax(outer.absolute[c], 0.5 * outer.relative * std::fabs(scale[c])) / length;
+  }
+  return inner;
+}
+
+// The Gauss–Hermite rules of integrate_line (immutable, built once).
+std::span<const QuadratureRule> hermite_rules() {
+  static const std::array<QuadratureRule, 4> rules{gauss_hermite(8), gauss_hermite(16),
+                                                   gauss_hermite(32), gauss_hermite(64)};
+  return rules;
+}
+
+// ∫ e^{−x²} h(x) dx over the line: Gauss–Hermite rules of increasing order, or adaptive Kronrod
+// on [−6, 6] when they do not converge (an integrand that is not smooth on the Gaussian's scale).
+template <std::size_t N, class H>
+Estimate<N> integrate_line(const H& h, const CubatureTolerance<N>& tolerance) {
+  Estimate<N> r = integrate_gauss_hermite<N>(h, hermite_rules(), tolerance);
+  if (r.converged) return r;
+  const long spent = r.evaluations;
+  r = integrate_adaptive<N>(
+      [&](double x) {
+        Estimate<N> e = h(x);
+        const double gaussian = math::exp(-x * x);
+        for (std::size_t c = 0; c < N; ++c) {
+          e.value[c] *= gaussian;
+          e.error[c] *= gaussian;
+        }
+        return e;
+      },
+      breakpoints_in(-kT, kT, {}), tolerance);
+  r.evaluations += spent;
+  return r;
+}
+
+double clamp_unit(double x) {
+  return std::fmin(std::fmax(x, -1.0), 1.0);
+}
+}  // namespace
+
+ScalarEstimate mean_fresnel_reference(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
+                                      const BrdfOptions& options, double relative) {
+  const double vn = dot(view, f.normal);
+  if (!(vn > 0.0)) return {fresnel_reflectance(0.0, options.fresnel), 0.0, 0, true};
+  const double sx = std::sqrt(2.0 * s.x);
+  const double sy = std::sqrt(2.0 * s.y);
+  // V·ñ = v_n − a·t with a = (s_x v_x, s_y v_y): in the frame u = ê·t, w = ê⊥·t (ê = a/|a|)
+  // the visible facets are u < d = v_n/|a|, for every w.
+  const double ax = sx * dot(view, f.tangent_x);
+  const double ay = sy * dot(view, f.tangent_y);
+  const double alpha = std::sqrt(ax * ax + ay * ay);
+  const double ex = alpha > 0.0 ? ax / alpha : 1.0;
+  const double ey = alpha > 0.0 ? ay / alpha : 0.0;
+  const double u_max = alpha > 0.0 ? std::fmin(vn / alpha, kT) : kT;
+  const CubatureTolerance<2> outer{relative / 3.0, {0.0, 0.0}};
+  // A priori: ∫e^{−|t|²} V·ñ dt = π v_n (1 + Λ_V) (Smith), and 1 − F̄ from the 8-point rule.
+  const double visible = kPi * view_terms(view, f, s, options.erfc).smith.visible_area;
+  const double transmitted_estimate =
+      1.0 - mean_fresnel(view, f, s, hermite_rules().front(), options);
+  const CubatureTolerance<2> inner =
+      inner_tolerance(outer, u_max + kT, {transmitted_estimate * visible, visible});
+  // Channels: the transmitted share (1 − F)·V·ñ and the visible area V·ñ, times e^{−u²} (the
+  // inner rule carries e^{−w²}).
+  const Estimate<2> r = integrate_adaptive<2>(
+      [&](double u) {
+        const double projected = vn - alpha * u;
+        const double g = math::exp(-u * u) * projected;
+        return integrate_line<2>(
+            [&](double w) {
+              const double zx = sx * (u * ex - w * ey);
+              const double zy = sy * (u * ey + w * ex);
+              const double cos_vm = projected / std::sqrt(1.0 + zx * zx + zy * zy);
+              Estimate<2> e;
+              e.value = {g * (1.0 - fresnel_reflectance(cos_vm, options.fresnel)), g};
+              return e;
+            },
+            inner);
+      },
+      breakpoints_in(-kT, u_max, {}), outer);
+  const double transmitted = r.value[0] / r.value[1];
+  return {1.0 - transmitted, (r.error[0] + transmitted * r.error[1]) / r.value[1], r.evaluations,
+          r.converged};
+}
+
+RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
+                                    const Sky& sky, const BrdfOptions& options, double relative,
+                                    const Vec3& absolute) {
+  const ViewTerms v = view_terms(view, f, s, options.erfc);
+  if (!(v.cos_theta > 0.0)) return {};
+  const double vn = v.cos_theta;
+  const double sx = std::sqrt(2.0 * s.x);
+  const double sy = std::sqrt(2.0 * s.y);
+  // The horizon: in ζ the circle of centre −v_t/v_n and radius R = 1/v_n; in t an ellipse of
+  // centre t₀. The frame u = n̂·t, w = n̂⊥·t with n̂ from t₀ towards the origin puts the
+  // boundary nearest to the Gaussian's mass across u, so most chords in w span the Gaussian.
+  const double t0x = -dot(view, f.tangent_x) / (vn * sx);
+  const double t0y = -dot(view, f.tangent_y) / (vn * sy);
+  const double t0 = std::sqrt(t0x * t0x + t0y * t0y);
+  const double nx = t0 > 0.0 ? -t0x / t0 : 1.0;
+  const double ny = t0 > 0.0 ? -t0y / t0 : 0.0;
+  // |S t − c|² = (Δu, Δw)ᵀ [[a, b], [b, c]] (Δu, Δw) < R², S = diag(s_x, s_y); its u-extent is
+  // u₀ ± U, U = R √c/(s_x s_y) (ac − b² = s_x² s_y²); with Δu = U sin θ the chord in w is
+  // centred at −b U sin θ/c with half-length R cos θ/√c, and du = U cos θ dθ.
+  const double radius = 1.0 / vn;
+  const double b = nx * ny * (sy * sy - sx * sx);
+  const double c = sx * sx * ny * ny + sy * sy * nx * nx;
+  const double extent = radius * std::sqrt(c) / (sx * sy);
+  const double u0 = -t0;
+  // The facet that mirrors V into the sun: the circumsolar peak (a cusp of the Perez γ-term).
+  Vec3 h{};
+  for (std::size_t k = 0; k < 3; ++k) h[k] = view[k] + sky.sun_direction[k];
+  const double hn = dot(h, f.normal);
+  const bool sun_peak = dot(sky.sun_direction, f.normal) > 0.0 && hn > 0.0;
+  const double tsx = sun_peak ? dot(h, f.tangent_x) / hn / sx : 0.0;
+  const double tsy = sun_peak ? dot(h, f.tangent_y) / hn / sy : 0.0;
+  const double u_sun = tsx * nx + tsy * ny;
+  const double w_sun = -tsx * ny + tsy * nx;
+  std::vector<double> theta_breaks;
+  for (const double u : breakpoints_in(-kT, kT, {u_sun})) {
+    theta_breaks.push_back(math::asin(clamp_unit((u - u0) / extent)));
+  }
+  const CubatureTolerance<3> outer{relative, absolute};
+  const CubatureTolerance<3> inner =
+      inner_tolerance(outer, theta_breaks.back() - theta_breaks.front(),
+                      reflected_sky(view, f, s, sky, hermite_rules().front(), options));
+  const Estimate<3> r = integrate_adaptive<3>(
+      [&](double theta) {
+        const math::SinCos angle = math::sincos(theta);
+        const double u = u0 + extent * angle.sin;
+        const double centre = -b * extent * angle.sin / c;
+        const double half_chord = radius * angle.cos / std::sqrt(c);
+        // dt = U cos θ dθ dw; p dζ = e^{−|t|²}/π dt.
+        const double g = extent * angle.cos / kPi * math::exp(-u * u);
+        const auto per_slope = [&](double w) {
+          Estimate<3> e;
+          e.value = reflected_sky_per_slope(sx * (u * nx - w * ny), sy * (u * ny + w * nx), view, v,
+                                            f, s, sky, options);
+          for (double& x : e.value) x *= g;
+          return e;
+        };
+        if (centre - half_chord <= -kT && centre + half_chord >= kT) {
+          return integrate_line<3>(per_slope, inner);  // outside the chord L·N < 0: zero
+        }
+        const double lo = std::fmax(-kT, centre - half_chord);
+        const double hi = std::fmin(kT, centre + half_chord);
+        if (!(hi > lo)) return Estimate<3>{};
+        return integrate_adaptive<3>(
+            [&](double w) {
+              Estimate<3> e = per_slope(w);
+              const double gaussian = math::exp(-w * w);
+              for (double& x : e.value) x *= gaussian;
+              return e;
+            },
+            breakpoints_in(lo, hi, {w_sun}), inner);
+      },
+      theta_breaks, outer);
+  return {r.value, r.error, r.evaluations, r.converged};
+}
+
+ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec3& view,
+                                       const SurfaceFrame& f, SlopeVariance s,
+                                       const BrdfOptions& options, double relative,
+                                       double absolute) {
+  const ViewTerms v = view_terms(view, f, s, options.erfc);
+  if (!(v.cos_theta > 0.0)) return {};
+  const auto [u, w] = sun_disk_axes(sun);
+  // A point (x, y) of the unit disk is the direction at angle ρ = ρ_s r (r = |(x, y)|) from the
+  // sun towards u x + w y: L = cos ρ S + (sin ρ/r)(x u + y w), dω = (sin ρ/ρ) ρ_s² dx dy.
+  const auto direction = [&](double x, double y, double& solid_angle_density) {
+    const double r = std::sqrt(x * x + y * y);
+    const double rho = radius * r;
+    const math::SinCos a = math::sincos(rho);
+    const double sinc = r > 0.0 ? a.sin / rho : 1.0;
+    solid_angle_density = sinc * radius * radius;
+    Vec3 l{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      l[k] = a.cos * sun[k] + sinc * radius * (x * u[k] + y * w[k]);
+    }
+    return l;
+  };
+  // The specular direction 2(V·N)N − V, where the lobe peaks, or the disk point nearest to it.
+  Vec3 mirror{};
+  for (std::size_t k = 0; k < 3; ++k) mirror[k] = 2.0 * v.cos_theta * f.normal[k] - view[k];
+  const double qx = dot(mirror, u);
+  const double qy = dot(mirror, w);
+  const double q = std::sqrt(qx * qx + qy * qy);
+  const double r0 = std::fmin(math::acos(clamp_unit(dot(mirror, sun))) / radius, 1.0);
+  const double x0 = q > 0.0 ? r0 * qx / q : 0.0;
+  const double y0 = q > 0.0 ? r0 * qy / q : 0.0;
+  const double theta0 = math::asin(clamp_unit(x0));
+  const double cos_theta0 = std::sqrt(std::fmax(0.0, 1.0 - x0 * x0));
+  const double eta0 = cos_theta0 > 0.0 ? clamp_unit(y0 / cos_theta0) : 0.0;
+  // x = sin θ, y = η cos θ maps [−π/2, π/2] × [−1, 1] onto the disk, dx dy = cos²θ dθ dη.
+  const CubatureTolerance<1> outer{relative, {absolute}};
+  const CubatureTolerance<1> inner = inner_tolerance(outer, kPi, {0.0});
+  const std::vector<double> eta_breaks{-1.0, eta0, 1.0};
+  const Estimate<1> r = integrate_adaptive<1>(
+      [&](double theta) {
+        const math::SinCos angle = math::sincos(theta);
+        return integrate_adaptive<1>(
+            [&](double eta) {
+              Estimate<1> e;
+              double solid_angle_density = 0.0;
+              const Vec3 l = direction(angle.sin, eta * angle.cos, solid_angle_density);
+              e.value[0] = angle.cos * angle.cos * solid_angle_density *
+                           ocean_brdf(l, view, v, f, s, options).brdf_cos;
+              return e;
+            },
+            eta_breaks, inner);
+      },
+      std::vector<double>{-0.5 * kPi, theta0, 0.5 * kPi}, outer);
+  return {r.value[0], r.error[0], r.evaluations, r.converged};
+}
+
+}  // namespace oceanref
