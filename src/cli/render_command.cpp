@@ -41,8 +41,8 @@ std::unique_ptr<Prepared> prepare(const std::string& path, int threads, int spp)
   }
   progress("oceanref", "realizing the wave spectrum");
   p->ocean = realize_ocean(p->scene.waves, threads);
-  p->unresolved = unresolved_slope_variance(p->ocean, p->scene.waves);
   p->job = scene_render_job(p->scene, p->ocean, threads);
+  p->unresolved = unresolved_slope_variance(p->job, p->scene.waves);
   return p;
 }
 
