@@ -57,7 +57,20 @@ double sample_periodic(const std::vector<double>& grid, int n, double size, doub
 
 double sample_periodic_bicubic(const std::vector<double>& grid, int n, double size, double x,
                                double z) {
-  return sample_periodic_gradient(grid, n, size, x, z, Interpolation::bicubic).value;
+  const GridPoint p = locate(n, size, x, z);
+  if (p.fu == 0.0 && p.fv == 0.0) return grid[grid_offset(p.m, p.n, n)];
+  const std::array<double, 4> wu = catmull_rom_weights(p.fu);
+  const std::array<double, 4> wv = catmull_rom_weights(p.fv);
+  double sum = 0.0;
+  for (std::size_t j = 0; j < 4; ++j) {
+    const int row = wrap_index(p.n + static_cast<int>(j) - 1, n);
+    double line = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      line += wu[i] * grid[grid_offset(wrap_index(p.m + static_cast<int>(i) - 1, n), row, n)];
+    }
+    sum += wv[j] * line;
+  }
+  return sum;  // the value of sample_periodic_gradient, without the derivatives
 }
 
 GridSample sample_periodic_gradient(const std::vector<double>& grid, int n, double size, double x,

@@ -42,7 +42,8 @@ inline constexpr double kMinimumSlopeVariance = 1e-10;
 enum class SlopeReading { derivative_of_height, interpolated_slopes };
 
 // Mean square over uniformly random positions of one pattern's shaded slope field along the
-// wind (cos φ, sin φ) and across it, from its h(k, t):
+// wind (cos φ, sin φ) and across it, from its h(k, t) (Gamper eq. A.1 on the discrete spectrum
+// as the renderer reads it):
 // Σ_k |h|² ŵᵀM(k)ŵ with M_xx = W_xV_z, M_zz = V_xW_z, M_xz = c_xc_z (derivative of the
 // height) or M = d dᵀ V_xV_z with d = d(k, 1) of eq. 4.12 (interpolated slopes); V, W, c the
 // per-axis factors of interpolation.h in physical units (W/Δ², c/Δ).
