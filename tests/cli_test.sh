@@ -96,15 +96,28 @@ for t in 2 3 8; do
   checks=$((checks + 1))
   cmp -s "$tmp/f1.exr" "$tmp/f$t.exr" || fail "fields EXR differs between 1 and $t threads"
 done
-# At a node of both cascades (x = z = 0) the FFT grid and the direct sum agree to rounding.
+# At a node of both cascades (x = z = 0) the FFT grid and the direct sum agree to rounding: every
+# raw field and the combined height. (With shading.normals = surface the combined slopes are the
+# derivatives of the bilinear interpolant of η and D, not the spectral slopes: they differ.)
 expect 0 '^cascade,field,fft,direct,difference$' fields "$tmp/scene.json" --at 0,0 --time 7
 [ "$(wc -l <"$tmp/out")" -eq 25 ] || fail "fields --at did not print 2x8 + 8 rows"
-awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
+node_rows='NR > 1 && ($1 != "sum" || $2 == "height") { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }'
+awk -F, "$node_rows" "$tmp/out" ||
   fail "fields --at 0,0: FFT and direct summation differ by more than 1e-12"
+awk -F, '$1 == "sum" && $2 == "slope_x" { d = $5 < 0 ? -$5 : $5; exit !(d > 1e-6) }' "$tmp/out" ||
+  fail "fields --at 0,0: the surface slopes should be the interpolant's, not the spectral ones"
 sed 's/"choppiness": -0.9/"choppiness": -0.9, "realization": "mastin"/' "$tmp/scene.json" >"$tmp/mastin.json"
 expect 0 '^cascade,field' fields "$tmp/mastin.json" --at 0,0
-awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
+awk -F, "$node_rows" "$tmp/out" ||
   fail "fields --at 0,0 (mastin): FFT and direct summation differ by more than 1e-12"
+# With the N_h slopes (shading.normals = high_resolution) every row agrees at a node.
+sed 's/"choppiness": -0.9}/"choppiness": -0.9}, "shading": {"normals": "high_resolution"}/' \
+  "$tmp/scene.json" >"$tmp/high.json"
+expect 0 '^cascade,field' fields "$tmp/high.json" --at 0,0 --time 7
+awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
+  fail "fields --at 0,0 (high_resolution): FFT and direct summation differ by more than 1e-12"
+sed 's/high_resolution/per_pixel/' "$tmp/high.json" >"$tmp/bad_normals.json"
+expect 2 'shading.normals: expected surface .* or high_resolution' fields "$tmp/bad_normals.json" --at 0,0
 printf '{"waves": {"resolution": 48}}' >"$tmp/bad.json"
 expect 2 'waves.resolution.*power of two' fields "$tmp/bad.json" --at 0,0
 printf '{"waves": {"choppiness": 0.5}}' >"$tmp/bad.json"
@@ -128,7 +141,7 @@ expect 2 'cannot write' fields "$tmp/scene.json" -o "$tmp/no/such/dir/f.exr"
 # --- sky and brdf --------------------------------------------------------------------------
 expect 0 '^x,y,z,Y,chroma_x,chroma_y,R,G,B$' sky --sun-zenith-deg 30 --dir '0,1,0;1,0.1,0;0,-1,0'
 [ "$(wc -l <"$tmp/out")" -eq 4 ] || fail "sky --dir did not print one row per direction"
-grep -q '^0,-1,0,0,' "$tmp/out" || fail "sky below the horizon is not 0"
+grep -q '^0,-1,0,[1-9]' "$tmp/out" || fail "sky below the horizon is not its (positive) horizon limit"
 expect 0 '^Y,chroma_x,chroma_y,R,G,B,angular_radius_rad$' sky --sun-zenith-deg 0 --sun
 expect 0 '^E_Y,E_X,E_Z,R,G,B,relative_error$' sky --sun-zenith-deg 45 --turbidity 4 --irradiance
 expect 0 '' sky --sun-zenith-deg 60 --size 32 -o "$tmp/sky.exr"
@@ -141,6 +154,28 @@ expect 0 '^quantity,value$' brdf --view -0.6,0.5,0 --sun 0.6,0.5,0 --sigma2 0.02
 grep -q '^F_mean,' "$tmp/out" || fail "brdf does not print F_mean"
 expect 2 '--sigma2.*\[1e-6, 1\]' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0,0.01
 expect 2 '--fresnel.*exact or schlick' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --fresnel x
+# Reference accuracy (the default, as in render): every integral with its error estimate, within
+# the tolerance; L_sky.R of this case is 228.41 (converged; the old order-32 rule gave 222.5).
+b=(brdf --view 0.3,0.5,0.8 --sun 0.2,0.4,0.9 --sigma2 0.02,0.015)
+expect 0 '^L_sky.R_error,' "${b[@]}"
+awk -F, '$1=="L_sky.R"{v=$2} $1=="L_sky.R_error"{e=$2} $1=="converged"{c=$2}
+  END{exit !(v > 228.41 && v < 228.42 && e > 0 && e <= 1e-6*v && c == 1)}' "$tmp/out" ||
+  fail "brdf reference L_sky.R is not 228.41 within its tolerance"
+grep -q '^F_mean_error,' "$tmp/out" || fail "brdf does not print F_mean_error"
+expect 0 '^L_sea.G_error,' "${b[@]}" --tolerance 1e-9
+expect 2 '--order.*fast only' "${b[@]}" --order 32
+expect 2 '--tolerance.*reference only' "${b[@]}" --accuracy fast --tolerance 1e-6
+expect 2 '--tolerance.*\[1e-10, 1e-2\]' "${b[@]}" --tolerance 0.5
+expect 2 '--accuracy.*reference or fast' "${b[@]}" --accuracy exact
+expect 2 '--order.*\[1, 1024\]' "${b[@]}" --accuracy fast --order 1025
+# Every order the CLI accepts is finite and near the reference (the old rule broke from 199 on:
+# F_mean 0 at 199, L_sky.R 9.2 at 400).
+for n in 1 4 32 199 200 400 1024; do
+  expect 0 '^L_sky.R,' "${b[@]}" --accuracy fast --order "$n"
+  awk -F, -v n="$n" '$1=="L_sky.R"{v=$2} $1=="F_mean"{f=$2}
+    END{tol = (n >= 199) ? 2e-3 : 0.5; exit !(v > 228.41*(1-tol) && v < 228.42*(1+tol) && f > 0.05 && f < 0.08)}' \
+    "$tmp/out" || fail "brdf --order $n: L_sky.R or F_mean off"
+done
 
 # --- render and probe --------------------------------------------------------------------------
 cat >"$tmp/render.json" <<'JSON'

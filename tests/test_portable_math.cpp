@@ -90,7 +90,7 @@ std::string small_render_hash() {
   const Scene scene = parse_scene(kSmallScene);
   const Ocean ocean = realize_ocean(scene.waves, 2);
   const RenderJob job = scene_render_job(scene, ocean, 2);
-  const RenderedImage image = render(job, unresolved_slope_variance(ocean, scene.waves));
+  const RenderedImage image = render(job, unresolved_slope_variance(job, scene.waves));
   std::vector<std::uint8_t> bytes;
   for (const Vec3& v : image.radiance) {
     for (const double c : v) append_bytes(bytes, c);

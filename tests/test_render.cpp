@@ -93,7 +93,7 @@ TEST_CASE("every viewing case renders a valid image (no NaN, nothing negative)")
         R"({"position": [0, 5, 0], "look_at": [0, 40, 30]})"}) {    // looking up
     CAPTURE(camera);
     auto s = prepare(small_scene(camera), 2);
-    const RenderedImage image = render(s->job, unresolved_slope_variance(s->ocean, s->scene.waves));
+    const RenderedImage image = render(s->job, unresolved_slope_variance(s->job, s->scene.waves));
     for (const Vec3& c : image.radiance) {
       for (const double v : c) CHECK((std::isfinite(v) && v >= 0.0));
     }
@@ -103,7 +103,7 @@ TEST_CASE("every viewing case renders a valid image (no NaN, nothing negative)")
 TEST_CASE("render determinism: identical pixels for 1, 2, 3 and 8 threads and across runs") {
   const Scene scene = small_scene(R"({"position": [0, 6, 0], "look_at": [0, 1, 50]})");
   auto reference = prepare(scene, 1);
-  const WindSlopeVariance u = unresolved_slope_variance(reference->ocean, scene.waves);
+  const WindSlopeVariance u = unresolved_slope_variance(reference->job, scene.waves);
   const RenderedImage a = render(reference->job, u);
   for (const int threads : {1, 2, 3, 8}) {
     auto s = prepare(scene, threads);
@@ -121,7 +121,7 @@ TEST_CASE(
   s->job.shading.tolerance = 1e-6;
   s->job.camera.width = 24;  // the reference costs ~1 ms per sample: keep the image small
   s->job.camera.height = 14;
-  const WindSlopeVariance unresolved = unresolved_slope_variance(s->ocean, s->scene.waves);
+  const WindSlopeVariance unresolved = unresolved_slope_variance(s->job, s->scene.waves);
   const RenderedImage reference = render(s->job, unresolved);
   CHECK(reference.unconverged_samples == 0);
   CHECK(reference.integrand_evaluations > 0);

@@ -181,7 +181,7 @@ TEST_CASE("foam of a sequence: steps = 0 is the indicator; accumulation never dr
   const auto fields = synthesize_ocean(ocean, scene.time, 1);
   const std::vector<double> j = cascade_jacobian(fields[0], ocean.cascades[0].choppiness);
   FoamSequence none;
-  const AccumulatedFoam now = accumulate_foam(ocean, scene.time, none, 1);
+  const AccumulatedFoam now = accumulate_foam(ocean, scene.time, none, ShadingNormals::surface, 1);
   int folded = 0;
   for (std::size_t c = 0; c < j.size(); ++c) {
     CHECK(now.cascades[0][c] == (j[c] < 0.0 ? 1.0 : 0.0));
@@ -189,7 +189,8 @@ TEST_CASE("foam of a sequence: steps = 0 is the indicator; accumulation never dr
   }
   CHECK(folded > 0);
   FoamSequence sequence{0.5, 0.1, 5};
-  const AccumulatedFoam acc = accumulate_foam(ocean, scene.time, sequence, 2);
+  const AccumulatedFoam acc =
+      accumulate_foam(ocean, scene.time, sequence, ShadingNormals::surface, 2);
   int lingering = 0;
   for (std::size_t c = 0; c < j.size(); ++c) {
     CHECK(acc.cascades[0][c] >= now.cascades[0][c]);

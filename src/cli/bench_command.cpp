@@ -343,10 +343,10 @@ void bench_render(std::ostream& out, const std::string& path, int threads, int w
   scene.image.samples_per_axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
   const auto t0 = std::chrono::steady_clock::now();
   const Ocean ocean = realize_ocean(scene.waves, threads);
-  const WindSlopeVariance unresolved = unresolved_slope_variance(ocean, scene.waves);
+  RenderJob job = scene_render_job(scene, ocean, threads);
+  const WindSlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
   const double prepare =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  RenderJob job = scene_render_job(scene, ocean, threads);
   RenderTimes times;
   const auto t1 = std::chrono::steady_clock::now();
   const RenderedImage image = render(job, unresolved, &times);
@@ -403,6 +403,36 @@ void bench_interpolation(std::ostream& out, const std::string& path, int threads
         << ',' << format_number(seconds) << '\n';
   }
 }
+// Where the spectrum's slope variance goes (waves/slope_budget.h) for every shading.normals and
+// interpolation, per wind axis: resolved + sigma2 = moment.
+void bench_slope_budget(std::ostream& out, const std::string& path, int threads) {
+  Scene scene = load_scene(path);
+  const Ocean ocean = realize_ocean(scene.waves, threads);
+  out << "normals,interpolation,axis,moment,resolved,above_cutoff,interpolation_loss,sampling,"
+         "sigma2,interpolation_loss_share_of_bands,identity_error\n";
+  for (const auto& [normals_name, normals] :
+       {std::pair{"surface", ShadingNormals::surface},
+        std::pair{"high_resolution", ShadingNormals::high_resolution}}) {
+    for (const auto& [name, mode] : {std::pair{"bilinear", Interpolation::bilinear},
+                                     std::pair{"bicubic", Interpolation::bicubic},
+                                     std::pair{"direct", Interpolation::direct}}) {
+      scene.shading.normals = normals;
+      scene.shading.interpolation = mode;
+      const RenderJob job = scene_render_job(scene, ocean, threads);
+      const SlopeVarianceBudget b = slope_budget(job, scene.waves);
+      for (const bool upwind : {true, false}) {
+        const auto v = [&](const WindSlopeVariance& w) { return upwind ? w.upwind : w.crosswind; };
+        out << normals_name << ',' << name << ',' << (upwind ? "upwind" : "crosswind") << ','
+            << format_number(v(b.moment)) << ',' << format_number(v(b.resolved)) << ','
+            << format_number(v(b.above_cutoff)) << ',' << format_number(v(b.interpolation_loss))
+            << ',' << format_number(v(b.sampling)) << ',' << format_number(v(b.unresolved)) << ','
+            << format_number(v(b.interpolation_loss) / v(b.discrete)) << ','
+            << format_number((v(b.resolved) + v(b.unresolved)) / v(b.moment) - 1.0) << '\n';
+      }
+    }
+  }
+}
+
 // The speed/accuracy study: every knob timed and compared with its most exact setting in the
 // same run (reference/ACCURACY.md, "Study").
 double seconds_of(const std::function<void()>& body) {
@@ -496,8 +526,8 @@ void bench_study(std::ostream& out, const std::string& path, int threads) {
     scene.image.height = height;
     scene.image.samples_per_axis = axis;
     const Ocean ocean = realize_ocean(scene.waves, threads);
-    const WindSlopeVariance u = unresolved_slope_variance(ocean, scene.waves);
     RenderJob job = scene_render_job(scene, ocean, threads);
+    const WindSlopeVariance u = unresolved_slope_variance(job, scene.waves);
     RenderedImage image;
     *seconds = seconds_of([&] { image = render(job, u); });
     return image;
@@ -614,7 +644,8 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   CLI::App* render_cmd = bench->add_subcommand(
       "render",
       "Time one render per stage (synthesis, grid, raster, shading) and samples/s; "
-      "the interpolation modes' error against direct summation.");
+      "the interpolation modes' error against direct summation; the slope variance budget "
+      "(resolved + sigma^2 = the spectrum's moment) for every shading.normals and interpolation.");
   render_cmd->add_option("--scene", render_flags->scene, "scene file")->capture_default_str();
   render_cmd->add_option("--threads", render_flags->threads, "worker threads")
       ->check(CLI::Range(1, 1024))
@@ -654,6 +685,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       if (axis * axis != r.spp) throw UsageError("--spp", "must be a square number");
       bench_render(out, r.scene, r.threads, r.width, r.height, r.spp);
       bench_interpolation(out, r.scene, r.threads);
+      bench_slope_budget(out, r.scene, r.threads);
       return;
     }
     const auto power_of_two = [](int n, int hi) { return n >= 4 && n <= hi && (n & (n - 1)) == 0; };

@@ -171,6 +171,10 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
         entry["width"] = r.exr.width;
         entry["height"] = r.exr.height;
         entry["version"] = r.exr.attributes.at("oceanref.version");
+        entry["lighting_accuracy"] = r.exr.attributes.at("oceanref.lighting_accuracy");
+        const LightingErrorSummary e = summarize_lighting_error(r.image);
+        if (e.estimated) entry["lighting_error_max_relative"] = e.max_relative;
+        entry["unconverged_samples"] = r.image.unconverged_samples;
         out << name << ',' << (same ? "unchanged" : "updated") << ',' << r.pixel_sha256 << '\n';
         continue;
       }

@@ -57,12 +57,14 @@ FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
     add_channel(prefix + "jacobian", 1, jacobian);
     add_channel(prefix + "foam", 1, foam);
   }
-  std::vector<PointFields> sum = combine_on_footprint(ocean, fields, threads);
+  std::vector<PointFields> sum =
+      combine_on_footprint(ocean, evolve_ocean(ocean, scene.time), scene.shading.normals, threads);
   // Foam of a sequence: the indicator accumulated over the earlier frames (listing 2.4).
   if (scene.foam.steps > 0) {
     progress("oceanref fields",
              "accumulating foam over " + std::to_string(scene.foam.steps) + " earlier frames");
-    const AccumulatedFoam foam = accumulate_foam(ocean, scene.time, scene.foam, threads);
+    const AccumulatedFoam foam =
+        accumulate_foam(ocean, scene.time, scene.foam, scene.shading.normals, threads);
     for (std::size_t i = 0; i < fields.size(); ++i) {
       const std::string name = "c" + std::to_string(i) + ".foam";
       for (ExrChannel& c : image.channels) {
@@ -81,10 +83,10 @@ FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
   sum_channel("slope_x", &PointFields::slope_x);
   sum_channel("slope_z", &PointFields::slope_z);
   sum_channel("jacobian", &PointFields::jacobian);
-  for (int axis = 0; axis < 3; ++axis) {  // n = (−s_x, 1, −s_z)/‖·‖ (Gamper §4.3)
+  for (int axis = 0; axis < 3; ++axis) {  // the shading normal (shading.normals)
     std::vector<double> v(sum.size());
     for (std::size_t i = 0; i < sum.size(); ++i) {
-      v[i] = surface_normal(sum[i].slope_x, sum[i].slope_z)[static_cast<std::size_t>(axis)];
+      v[i] = sum[i].normal[static_cast<std::size_t>(axis)];
     }
     add_channel(std::string("sum.normal_") + "xyz"[axis], 1, v);
   }
@@ -94,8 +96,11 @@ FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads) {
   image.attributes["oceanref.seed"] = std::to_string(scene.seed);
   image.attributes["oceanref.layout"] =
       "sample (m, n) at x = m L/N, z = n L/N (EXR column m, row n); c<i>.height, disp_x, disp_z "
-      "are subsampled by N_h/N_l; sum.* covers cascade 0 (L_0), other cascades sampled "
-      "bilinearly; lengths in m, slopes and Jacobian dimensionless";
+      "are subsampled by N_h/N_l; sum.* covers cascade 0 (L_0) at N_h x N_h points, every "
+      "cascade evaluated exactly there (no interpolation), combined as shading.normals = " +
+      std::string(scene.shading.normals == ShadingNormals::surface ? "surface"
+                                                                   : "high_resolution") +
+      "; lengths in m, slopes and Jacobian dimensionless";
   std::vector<std::uint8_t> bytes;
   for (const auto& [name, values] : exact) {  // std::map: name order
     bytes.insert(bytes.end(), name.begin(), name.end());
@@ -123,8 +128,6 @@ void write_point(std::ostream& out, const Scene& scene, const Ocean& ocean, doub
         << ',' << format_number(fft - direct) << '\n';
   };
   const std::vector<EvolvedCascade> evolved = evolve_ocean(ocean, scene.time);
-  PointFields g;  // the combination from the grids
-  PointFields d;  // and from direct summation
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const CascadeSpectra& c = ocean.cascades[i];
     const auto grid = cascade_from_grids(fields[i], x, z);
@@ -132,17 +135,20 @@ void write_point(std::ostream& out, const Scene& scene, const Ocean& ocean, doub
     for (std::size_t q = 0; q < kFieldNames.size(); ++q) {
       row(std::to_string(i), kFieldNames[q], grid[q], direct[q]);
     }
-    add_cascade(g, grid, c.choppiness);
-    add_cascade(d, direct, c.choppiness);
   }
-  finish_combination(g);
-  finish_combination(d);
+  // The combination as the renderer shades it (shading.normals): from the grids read
+  // bilinearly, and by direct summation.
+  const ShadingNormals normals = scene.shading.normals;
+  const PointFields g =
+      combine_shading_at(ocean, fields, evolved, x, z, Interpolation::bilinear, normals);
+  const PointFields d =
+      combine_shading_at(ocean, fields, evolved, x, z, Interpolation::direct, normals);
   row("sum", "height", g.height, d.height);
   row("sum", "slope_x", g.slope_x, d.slope_x);
   row("sum", "slope_z", g.slope_z, d.slope_z);
   row("sum", "jacobian", g.jacobian, d.jacobian);
-  const auto ng = surface_normal(g.slope_x, g.slope_z);
-  const auto nd = surface_normal(d.slope_x, d.slope_z);
+  const auto& ng = g.normal;
+  const auto& nd = d.normal;
   row("sum", "normal_x", ng[0], nd[0]);
   row("sum", "normal_y", ng[1], nd[1]);
   row("sum", "normal_z", ng[2], nd[2]);
@@ -166,7 +172,8 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
       "normal_y, normal_z, foam");
   auto* at = cmd->add_option("--at", flags->at,
                              "x,z [m] -> CSV cascade,field,fft,direct,difference (FFT grid: exact "
-                             "at nodes, bilinear between; direct: summation of every component)");
+                             "at nodes, bilinear between; direct: summation of every component; "
+                             "sum rows combined as shading.normals)");
   output->excludes(at);
   cmd->add_option("--threads", flags->threads,
                   "worker threads (default: all cores); the output is identical for any count");

@@ -41,8 +41,8 @@ std::unique_ptr<Prepared> prepare(const std::string& path, int threads, int spp)
   }
   progress("oceanref", "realizing the wave spectrum");
   p->ocean = realize_ocean(p->scene.waves, threads);
-  p->unresolved = unresolved_slope_variance(p->ocean, p->scene.waves);
   p->job = scene_render_job(p->scene, p->ocean, threads);
+  p->unresolved = unresolved_slope_variance(p->job, p->scene.waves);
   return p;
 }
 
@@ -218,6 +218,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       out << "lighting_error_median_relative," << format_number(e.median_relative) << '\n';
     }
     out << "unconverged_samples," << r.image.unconverged_samples << '\n';
+    out << "integrand_evaluations," << r.image.integrand_evaluations << '\n';
     if (r.image.unconverged_samples > 0) {
       progress("oceanref", "warning: " + std::to_string(r.image.unconverged_samples) +
                                " samples missed the lighting tolerance (their error estimates "

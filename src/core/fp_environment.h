@@ -9,10 +9,11 @@
 // inherit the reference state (POSIX: a new thread inherits the creator's FP environment).
 //
 // The entry points that hold one: parse_scene/load_scene, make_sky, integrate,
-// gauss_legendre/gauss_hermite, realize_ocean, synthesize_ocean, accumulate_foam,
-// unresolved_slope_variance, scene_render_job, render, probe_pixel, and the oceanref program's
-// main. A host that calls lower-level functions directly should hold a ReferenceFpEnvironment
-// itself (tests/test_portable_math.cpp shows the sequence).
+// gauss_legendre/gauss_hermite, realize_ocean,
+// synthesize_ocean, accumulate_foam, combine_on_footprint, slope_variance_budget (and
+// slope_budget, unresolved_slope_variance), scene_render_job, render,
+// probe_pixel, and the oceanref program's main. A host that calls lower-level functions directly
+// should hold a ReferenceFpEnvironment itself (tests/test_portable_math.cpp shows the sequence).
 #pragma once
 
 #include <cstdint>

@@ -46,7 +46,8 @@ FrameFields frame_fields(const RenderJob& job) {
 }
 
 PointFields fields_at(const RenderJob& job, const FrameFields& f, glm::dvec2 x0) {
-  return combine_at(*job.ocean, f.grids, f.evolved, x0.x, x0.y, job.shading.interpolation);
+  return combine_shading_at(*job.ocean, f.grids, f.evolved, x0.x, x0.y, job.shading.interpolation,
+                            job.shading.normals);
 }
 
 Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double bound) {
@@ -105,7 +106,7 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
     p.position += f.weights[v] * g.world[t[v]];
   }
   p.fields = fields_at(job, fields, p.x0);
-  p.normal = surface_normal(p.fields.slope_x, p.fields.slope_z);
+  p.normal = p.fields.normal;  // shading.normals (waves/surface.h)
   p.view = to_vec3(glm::normalize(job.camera.position - p.position));
   // The geometry faces the camera but the shading normal (from waves finer than the grid) may
   // not: bend it towards the viewer until V·N = 0.001 (documented in README, "render").
@@ -164,18 +165,14 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
 }
 }  // namespace
 
-WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettings& waves) {
+SlopeVarianceBudget slope_budget(const RenderJob& job, const WaveSettings& waves) {
   const ReferenceFpEnvironment fp;
-  double k_top = 0.0;
-  for (const CascadeSpectra& c : ocean.cascades) {
-    k_top = std::fmax(
-        k_top, std::fmin(c.high.pattern.band.upper,
-                         nyquist_wavenumber(c.high.pattern.size, c.high.pattern.resolution)));
-  }
-  const double k_floor = waves.minimum_wavelength > 0.0
-                             ? 2.0 * std::numbers::pi / waves.minimum_wavelength
-                             : kDefaultMaxWavenumber * 10.0;
-  return band_slope_variance(ocean.spectrum, k_top, k_floor);
+  return slope_variance_budget(*job.ocean, waves.minimum_wavelength, job.time,
+                               job.shading.interpolation, job.shading.normals);
+}
+
+WindSlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves) {
+  return slope_budget(job, waves).unresolved;
 }
 
 RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,

@@ -14,6 +14,7 @@
 #include "shading/lighting_terms.h"
 #include "spectrum/moments.h"
 #include "waves/ocean.h"
+#include "waves/slope_budget.h"
 
 namespace oceanref {
 
@@ -55,9 +56,14 @@ struct RenderedImage {
   double displacement_bound = 0.0;
 };
 
-// The unresolved slope variance: the spectrum's slopes beyond the largest wavenumber the
-// cascades sample, up to λ_min (or 2π/λ_min of 1.73 cm when no floor is set).
-WindSlopeVariance unresolved_slope_variance(const Ocean& ocean, const WaveSettings& waves);
+// The slope variance budget of the job's frame (waves/slope_budget.h): the spectrum's mean
+// square slope per wind axis up to λ_min, split into what the shaded slope field carries (its
+// bands, as interpolated) and the rest.
+SlopeVarianceBudget slope_budget(const RenderJob& job, const WaveSettings& waves);
+// The unresolved slope variance, the BRDF's σ²: every slope variance the shaded fields do not
+// carry — the spectrum beyond their bands, what interpolation removes, and the realization's
+// deficit — so that resolved + σ² equals the spectrum's moment per axis.
+WindSlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves);
 
 // Wall-clock seconds per stage (benchmarks).
 struct RenderTimes {

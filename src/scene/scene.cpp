@@ -300,7 +300,7 @@ void parse_rendering(const Section& top, Scene& scene) {
   const Section shading(
       top.has("shading") ? top.at("shading") : empty, "shading",
       {"sun", "sky", "sea", "whitecaps", "fresnel", "erfc", "accuracy", "tolerance", "sky_order",
-       "sun_order", "sea_colour", "foam_albedo", "whitecap_threshold", "interpolation"});
+       "sun_order", "sea_colour", "foam_albedo", "whitecap_threshold", "interpolation", "normals"});
   ShadingSettings& h = scene.shading;
   h.sun = shading.boolean("sun", true);
   h.sky = shading.boolean("sky", true);
@@ -357,6 +357,17 @@ void parse_rendering(const Section& top, Scene& scene) {
   } else {
     throw SceneError("shading.interpolation",
                      "expected bilinear, bicubic or direct; got '" + interpolation + "'");
+  }
+  const std::string normals = shading.text("normals", "surface");
+  if (normals == "surface") {
+    h.normals = ShadingNormals::surface;
+  } else if (normals == "high_resolution") {
+    h.normals = ShadingNormals::high_resolution;
+  } else {
+    throw SceneError("shading.normals",
+                     "expected surface (the normal of the rasterized surface) or high_resolution "
+                     "(the slopes of the N_h bands, Gamper 4.4); got '" +
+                         normals + "'");
   }
   const Section render(top.has("render") ? top.at("render") : empty, "render",
                        {"width", "height", "samples_per_pixel", "tone_key", "tone_white"});

@@ -9,6 +9,7 @@
 #include "shading/ocean_lighting.h"
 #include "shading/reference_lighting.h"
 #include "waves/ocean.h"
+#include "waves/surface.h"
 
 namespace oceanref {
 
@@ -34,6 +35,9 @@ struct ShadingSettings {
   double foam_albedo = 0.8;
   double whitecap_threshold = 0.0;  // foam where det J < threshold
   Interpolation interpolation = Interpolation::bicubic;
+  // The shading normal: of the rasterized surface (N_l bands) or from the N_h slopes
+  // (waves/surface.h).
+  ShadingNormals normals = ShadingNormals::surface;
 };
 
 // Everything the shading of a frame shares: computed once, not per sample.

@@ -235,13 +235,31 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
   const double r0 = std::fmin(math::acos(clamp_unit(dot(mirror, sun))) / radius, 1.0);
   const double x0 = q > 0.0 ? r0 * qx / q : 0.0;
   const double y0 = q > 0.0 ? r0 * qy / q : 0.0;
-  const double theta0 = math::asin(clamp_unit(x0));
+  // The lobe's width in disk units, ~2σ/ρ_s (the half vector turns half as fast as L). A lobe
+  // narrower than the disk gets breakpoints at geometrically growing distances from its peak,
+  // so that no Kronrod rule straddles it unseen (σ² is floored at 1e-10 by the slope budget).
+  const double lobe = 2.0 * std::sqrt(std::fmin(s.x, s.y)) / radius;
+  const auto around = [lobe](double centre, double lo, double hi) {
+    std::vector<double> b{lo, centre, hi};
+    for (double d = lobe; d < hi - lo; d *= 4.0) {
+      b.push_back(centre - d);
+      b.push_back(centre + d);
+    }
+    std::sort(b.begin(), b.end());
+    std::vector<double> inside;
+    for (const double x : b) {
+      if (x >= lo && x <= hi && (inside.empty() || x > inside.back())) inside.push_back(x);
+    }
+    return inside;
+  };
   const double cos_theta0 = std::sqrt(std::fmax(0.0, 1.0 - x0 * x0));
   const double eta0 = cos_theta0 > 0.0 ? clamp_unit(y0 / cos_theta0) : 0.0;
+  std::vector<double> theta_breaks;
+  for (const double x : around(x0, -1.0, 1.0)) theta_breaks.push_back(math::asin(x));
   // x = sin θ, y = η cos θ maps [−π/2, π/2] × [−1, 1] onto the disk, dx dy = cos²θ dθ dη.
   const CubatureTolerance<1> outer{relative, {absolute}};
   const CubatureTolerance<1> inner = inner_tolerance(outer, kPi, {0.0});
-  const std::vector<double> eta_breaks{-1.0, eta0, 1.0};
+  const std::vector<double> eta_breaks = around(eta0, -1.0, 1.0);
   const Estimate<1> r = integrate_adaptive<1>(
       [&](double theta) {
         const math::SinCos angle = math::sincos(theta);
@@ -256,7 +274,7 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
             },
             eta_breaks, inner);
       },
-      std::vector<double>{-0.5 * kPi, theta0, 0.5 * kPi}, outer);
+      theta_breaks, outer);
   return {r.value[0], r.error[0], r.evaluations, r.converged};
 }
 

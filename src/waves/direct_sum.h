@@ -26,6 +26,25 @@ EvolvedCascade evolve_cascade(const PatternSpectrum& low, const PatternSpectrum&
 // The raw fields (the order of kFieldNames) of one cascade at (x, z) [m].
 std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const PatternSpectrum& high,
                                            const EvolvedCascade& h, double x, double z);
+// Every raw field of ONE pattern (η and D as well as the slopes and ∂D, all from its band) and
+// ∂D_z/∂x at (x, z): the exact derivatives of the field the sum represents.
+CascadeSurface direct_sum_surface(const PatternSpectrum& s, const std::vector<Complex>& h, double x,
+                                  double z);
+
+// The exact band-limited fields of one pattern (the sums above) on the lattice of points
+// (m, n)·spacing, 0 ≤ m, n < points, row-major [n·points + m]; only the requested fields (and
+// ∂D_z/∂x when `ddz_dx`) are filled. Separable: Σ_β e_β(z) Σ_α e_α(x) M h, each output summed
+// alone in a fixed order (any thread count gives the same bits).
+struct LatticeFields {
+  int points = 0;
+  double spacing = 0.0;
+  std::array<std::vector<double>, kFieldCount> values;
+  std::vector<double> ddz_dx;
+};
+LatticeFields direct_sum_on_lattice(const PatternSpectrum& s, const std::vector<Complex>& h,
+                                    int points, double spacing, const std::vector<Field>& fields,
+                                    bool ddz_dx, int threads);
+
 // The same at time t [s] for a single point.
 std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const PatternSpectrum& high,
                                            double x, double z, double time);

@@ -106,6 +106,15 @@ void add_cascade(PointFields& sum, const std::array<double, kFieldCount>& raw, d
     const double scale = f >= static_cast<int>(Field::displacement_x) ? u : 1.0;
     sum.raw[static_cast<std::size_t>(f)] += scale * raw[static_cast<std::size_t>(f)];
   }
+  sum.ddz_dx += u * raw[static_cast<std::size_t>(Field::ddx_dz)];
+}
+
+void add_cascade_surface(PointFields& sum, const CascadeSurface& c, double u) {
+  for (int f = 0; f < kFieldCount; ++f) {
+    const double scale = f >= static_cast<int>(Field::displacement_x) ? u : 1.0;
+    sum.raw[static_cast<std::size_t>(f)] += scale * c.raw[static_cast<std::size_t>(f)];
+  }
+  sum.ddz_dx += u * c.ddz_dx;
 }
 
 double displaced_slope(double slope, double scaled_displacement_derivative) {
@@ -116,6 +125,10 @@ double jacobian_determinant(double u_ddx_dx, double u_ddz_dz, double u_ddx_dz) {
   return (1.0 + u_ddx_dx) * (1.0 + u_ddz_dz) - u_ddx_dz * u_ddx_dz;
 }
 
+double jacobian_determinant(double u_ddx_dx, double u_ddz_dz, double u_ddx_dz, double u_ddz_dx) {
+  return (1.0 + u_ddx_dx) * (1.0 + u_ddz_dz) - u_ddx_dz * u_ddz_dx;
+}
+
 void finish_combination(PointFields& sum) {
   const auto raw = [&](Field f) { return sum.raw[static_cast<std::size_t>(f)]; };
   sum.height = raw(Field::height);
@@ -123,11 +136,41 @@ void finish_combination(PointFields& sum) {
   sum.slope_z = displaced_slope(raw(Field::slope_z), raw(Field::ddz_dz));
   sum.jacobian = jacobian_determinant(raw(Field::ddx_dx), raw(Field::ddz_dz), raw(Field::ddx_dz));
   sum.foam = sum.jacobian < 0.0 ? 1.0 : 0.0;
+  sum.normal = surface_normal(sum.slope_x, sum.slope_z);
+}
+
+void finish_surface_combination(PointFields& sum) {
+  const auto raw = [&](Field f) { return sum.raw[static_cast<std::size_t>(f)]; };
+  const double eta_x = raw(Field::slope_x);
+  const double eta_z = raw(Field::slope_z);
+  const double j_xx = 1.0 + raw(Field::ddx_dx);
+  const double j_zz = 1.0 + raw(Field::ddz_dz);
+  const double j_xz = raw(Field::ddx_dz);
+  const double j_zx = sum.ddz_dx;
+  sum.height = raw(Field::height);
+  sum.jacobian = jacobian_determinant(raw(Field::ddx_dx), raw(Field::ddz_dz), j_xz, j_zx);
+  // s = J⁻ᵀ∇η = adj(J)ᵀ∇η / det J
+  sum.slope_x = (j_zz * eta_x - j_zx * eta_z) / sum.jacobian;
+  sum.slope_z = (j_xx * eta_z - j_xz * eta_x) / sum.jacobian;
+  sum.foam = sum.jacobian < 0.0 ? 1.0 : 0.0;
+  sum.normal = displaced_surface_normal(eta_x, eta_z, j_xx, j_xz, j_zx, j_zz);
 }
 
 std::array<double, 3> surface_normal(double slope_x, double slope_z) {
   const double length = std::sqrt(slope_x * slope_x + 1.0 + slope_z * slope_z);
   return {-slope_x / length, 1.0 / length, -slope_z / length};
+}
+
+std::array<double, 3> displaced_surface_normal(double eta_x, double eta_z, double j_xx, double j_xz,
+                                               double j_zx, double j_zz) {
+  const double det = j_xx * j_zz - j_xz * j_zx;
+  const double orientation = det < 0.0 ? -1.0 : 1.0;
+  const double nx = -(j_zz * eta_x - j_zx * eta_z) * orientation;
+  const double ny = det * orientation;
+  const double nz = -(j_xx * eta_z - j_xz * eta_x) * orientation;
+  const double length = std::sqrt(nx * nx + ny * ny + nz * nz);
+  if (!(length > 0.0)) return {0.0, 1.0, 0.0};
+  return {nx / length, ny / length, nz / length};
 }
 
 double accumulated_foam(double last, double current, double decay, double time_step) {

@@ -119,22 +119,48 @@ CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectr
 struct PointFields {
   std::array<double, kFieldCount> raw{};  // summed raw fields Σ_i (displacements and their
                                           // derivatives scaled by u_i)
-  double height = 0.0;                    // y = Σ η_i                       (eq. 4.22)
-  double slope_x = 0.0, slope_z = 0.0;    // slopes after displacement       (eq. 4.25)
-  double jacobian = 1.0;                  // det J                           (eq. 4.26)
-  double foam = 0.0;                      // 1 where det J < 0, else 0
+  // Σ_i u_i ∂D_z/∂x. For spectral fields it equals raw ∂D_x/∂z (one spectrum k_x k_z h/k); the
+  // derivatives of separately interpolated D_x and D_z differ slightly (surface normals).
+  double ddz_dx = 0.0;
+  double height = 0.0;                  // y = Σ η_i                       (eq. 4.22)
+  double slope_x = 0.0, slope_z = 0.0;  // slopes after displacement      (eq. 4.25, or J⁻ᵀ∇η)
+  double jacobian = 1.0;                // det J                           (eq. 4.26)
+  double foam = 0.0;                    // 1 where det J < 0, else 0
+  std::array<double, 3> normal{0.0, 1.0, 0.0};  // the shading normal, unit, n_y ≥ 0
 };
 // Accumulates one cascade's raw values into the combination (u·D, u·∂D).
 void add_cascade(PointFields& sum, const std::array<double, kFieldCount>& raw, double choppiness);
-// Completes the combination: slopes (eq. 4.25), Jacobian (eq. 4.26), foam indicator.
+// Completes the combination the Gamper way: slopes (eq. 4.25), Jacobian (eq. 4.26), foam
+// indicator, the normal of those slopes (§4.3).
 void finish_combination(PointFields& sum);
+
+// One cascade's fields and their derivatives at a point where ∂D_z/∂x is its own value
+// (derivatives of interpolants; the direct sum on a Nyquist line).
+struct CascadeSurface {
+  std::array<double, kFieldCount> raw{};
+  double ddz_dx = 0.0;
+};
+// Accumulates it like add_cascade, with ∂D_z/∂x taken from `ddz_dx`.
+void add_cascade_surface(PointFields& sum, const CascadeSurface& c, double choppiness);
+// Completes the combination as the exact displaced surface p(x0) = (x0 + uD, η) (eq. 4.20):
+// J = ∂(x0 + uD)/∂x0 with both off-diagonal entries, slopes s = J⁻ᵀ∇η (eq. 4.25 without its
+// diagonal approximation), n from displaced_surface_normal, det J and the foam indicator.
+void finish_surface_combination(PointFields& sum);
 
 // s = [∂η/∂x / (1 + u ∂D_x/∂x), ∂η/∂z / (1 + u ∂D_z/∂z)]  (Gamper eq. 4.21/4.25).
 double displaced_slope(double slope, double scaled_displacement_derivative);
 // det J = (1 + u∂D_x/∂x)(1 + u∂D_z/∂z) − (u∂D_x/∂z)(u∂D_z/∂x)  (Gamper eq. 4.26).
 double jacobian_determinant(double u_ddx_dx, double u_ddz_dz, double u_ddx_dz);
+// The same with the two off-diagonal entries given separately (Gamper eq. 4.26).
+double jacobian_determinant(double u_ddx_dx, double u_ddz_dz, double u_ddx_dz, double u_ddz_dx);
 // n = (−s_x, 1, −s_z)/‖·‖  (Gamper §4.3, normal vectors).
 std::array<double, 3> surface_normal(double slope_x, double slope_z);
+// The unit normal of the displaced surface p(x0) = (x0 + uD(x0), η(x0)) (Gamper eq. 4.20),
+// ∝ ∂p/∂z0 × ∂p/∂x0 = (−(J_zz η_x − J_zx η_z), det J, −(J_xx η_z − J_xz η_x)), turned upward
+// (n_y ≥ 0): (−s_x, 1, −s_z)/‖·‖ with s = J⁻ᵀ∇η where det J ≠ 0, horizontal where det J = 0,
+// the folded sheet seen from above where det J < 0. J_ab = ∂(x0 + uD)_a/∂x0_b.
+std::array<double, 3> displaced_surface_normal(double eta_x, double eta_z, double j_xx, double j_xz,
+                                               double j_zx, double j_zz);
 // Foam of a sequence (Vincevičius listing 2.4): accumulation = last − decay·Δt/max(current, ½),
 // foam = max(accumulation, current); `current` is the indicator (1 where det J < 0).
 double accumulated_foam(double last, double current, double decay, double time_step);

@@ -51,68 +51,6 @@ std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int
   return fields;
 }
 
-namespace {
-// A point of a periodic N-cell grid of size L: the cell (m, n) below-left of it and the fractions
-// (f_u, f_v) ∈ [0, 1) across it. A point within 1e−9 cell of a node is that node.
-struct GridPoint {
-  int m, n;
-  double fu, fv;
-};
-GridPoint locate(int cells, double size, double x, double z) {
-  const double spacing = size / cells;
-  const auto wrap = [&](double p) {
-    double u = std::fmod(p, size) / spacing;
-    if (u < 0.0) u += cells;
-    const double node = std::nearbyint(u);
-    if (std::fabs(u - node) < 1e-9) u = node;
-    return u >= cells ? u - cells : u;
-  };
-  const double u = wrap(x);
-  const double v = wrap(z);
-  return {static_cast<int>(std::floor(u)) % cells, static_cast<int>(std::floor(v)) % cells,
-          u - std::floor(u), v - std::floor(v)};
-}
-}  // namespace
-
-double sample_periodic(const std::vector<double>& grid, int n, double size, double x, double z) {
-  const GridPoint p = locate(n, size, x, z);
-  const int m1 = (p.m + 1) % n;
-  const int n1 = (p.n + 1) % n;
-  const auto at = [&](int m, int k) { return grid[grid_offset(m, k, n)]; };
-  if (p.fu == 0.0 && p.fv == 0.0) return at(p.m, p.n);  // exactly the node value
-  return (1.0 - p.fv) * ((1.0 - p.fu) * at(p.m, p.n) + p.fu * at(m1, p.n)) +
-         p.fv * ((1.0 - p.fu) * at(p.m, n1) + p.fu * at(m1, n1));
-}
-
-double sample_periodic_bicubic(const std::vector<double>& grid, int n, double size, double x,
-                               double z) {
-  const GridPoint p = locate(n, size, x, z);
-  const int m0 = p.m;
-  const int n0 = p.n;
-  const double fu = p.fu;
-  const double fv = p.fv;
-  if (fu == 0.0 && fv == 0.0) return grid[grid_offset(m0, n0, n)];
-  // Catmull–Rom weights of the nodes −1, 0, 1, 2.
-  const auto weights = [](double t) {
-    return std::array<double, 4>{0.5 * ((-t + 2.0) * t - 1.0) * t,
-                                 0.5 * ((3.0 * t - 5.0) * t * t + 2.0),
-                                 0.5 * ((-3.0 * t + 4.0) * t + 1.0) * t, 0.5 * (t - 1.0) * t * t};
-  };
-  const std::array<double, 4> wu = weights(fu);
-  const std::array<double, 4> wv = weights(fv);
-  double sum = 0.0;
-  for (int j = 0; j < 4; ++j) {
-    const int row = ((n0 + j - 1) % n + n) % n;
-    double line = 0.0;
-    for (int i = 0; i < 4; ++i) {
-      const int column = ((m0 + i - 1) % n + n) % n;
-      line += wu[static_cast<std::size_t>(i)] * grid[grid_offset(column, row, n)];
-    }
-    sum += wv[static_cast<std::size_t>(j)] * line;
-  }
-  return sum;
-}
-
 std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z,
                                                    Interpolation mode) {
   std::array<double, kFieldCount> raw{};
@@ -186,21 +124,59 @@ std::vector<double> cascade_jacobian(const CascadeFields& f, double u) {
 }
 
 std::vector<PointFields> combine_on_footprint(const Ocean& ocean,
-                                              const std::vector<CascadeFields>& fields,
-                                              int threads) {
-  const int n = fields[0].high_resolution;
-  const double spacing = fields[0].size / n;
+                                              const std::vector<EvolvedCascade>& evolved,
+                                              ShadingNormals normals, int threads) {
+  const ReferenceFpEnvironment fp;
+  const CascadeSpectra& first = ocean.cascades[0];
+  const int n = first.high.pattern.resolution;
+  const double spacing = first.high.pattern.size / n;
   std::vector<PointFields> out(grid_cells(n));
-  parallel_for(n, threads, [&](int row) {
-    for (int m = 0; m < n; ++m) {
-      out[grid_offset(m, row, n)] = combine_from_grids(ocean, fields, m * spacing, row * spacing);
+  const std::vector<Field> low_fields{Field::height, Field::displacement_x, Field::displacement_z};
+  const std::vector<Field> high_fields{Field::slope_x, Field::slope_z, Field::ddx_dx, Field::ddz_dz,
+                                       Field::ddx_dz};
+  const std::vector<Field> all_fields{Field::height,         Field::slope_x,        Field::slope_z,
+                                      Field::displacement_x, Field::displacement_z, Field::ddx_dx,
+                                      Field::ddz_dz,         Field::ddx_dz};
+  for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
+    const CascadeSpectra& c = ocean.cascades[i];
+    const EvolvedCascade& h = evolved[i];
+    LatticeFields lattice;
+    if (normals == ShadingNormals::surface) {
+      lattice = direct_sum_on_lattice(c.low, h.low, n, spacing, all_fields, true, threads);
+    } else {
+      lattice = direct_sum_on_lattice(c.low, h.low, n, spacing, low_fields, false, threads);
+      LatticeFields high =
+          direct_sum_on_lattice(c.high, h.high, n, spacing, high_fields, false, threads);
+      for (const Field f : high_fields) {
+        lattice.values[static_cast<std::size_t>(f)] =
+            std::move(high.values[static_cast<std::size_t>(f)]);
+      }
     }
-  });
+    parallel_for(n, threads, [&](int row) {
+      for (std::size_t p = grid_offset(0, row, n); p < grid_offset(0, row + 1, n); ++p) {
+        CascadeSurface s;
+        for (std::size_t f = 0; f < s.raw.size(); ++f) s.raw[f] = lattice.values[f][p];
+        if (normals == ShadingNormals::surface) {
+          s.ddz_dx = lattice.ddz_dx[p];
+          add_cascade_surface(out[p], s, c.choppiness);
+        } else {
+          add_cascade(out[p], s.raw, c.choppiness);
+        }
+      }
+    });
+  }
+  for (PointFields& p : out) {
+    if (normals == ShadingNormals::surface) {
+      finish_surface_combination(p);
+    } else {
+      finish_combination(p);
+    }
+  }
   return out;
 }
 
 AccumulatedFoam accumulate_foam(const Ocean& ocean, double time, const FoamSequence& sequence,
-                                int threads) {
+                                ShadingNormals normals, int threads) {
   const ReferenceFpEnvironment fp;
   AccumulatedFoam foam;
   foam.cascades.resize(ocean.cascades.size());
@@ -215,7 +191,8 @@ AccumulatedFoam accumulate_foam(const Ocean& ocean, double time, const FoamSeque
         f[c] = accumulated_foam(f[c], j[c] < 0.0 ? 1.0 : 0.0, sequence.decay, sequence.time_step);
       }
     }
-    const std::vector<PointFields> sum = combine_on_footprint(ocean, frame, threads);
+    const std::vector<PointFields> sum =
+        combine_on_footprint(ocean, evolve_ocean(ocean, t), normals, threads);
     if (foam.combined.empty()) foam.combined.assign(sum.size(), 0.0);
     for (std::size_t c = 0; c < sum.size(); ++c) {
       foam.combined[c] =

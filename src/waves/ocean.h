@@ -10,7 +10,9 @@
 #include "waves/cascades.h"
 #include "waves/direct_sum.h"
 #include "waves/fields.h"
+#include "waves/interpolation.h"
 #include "waves/realization.h"
+#include "waves/surface.h"
 
 namespace oceanref {
 
@@ -52,17 +54,6 @@ Ocean realize_ocean(const WaveSettings& settings, int threads);
 // Raw fields of every cascade at time t.
 std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads);
 
-// How the cascade grids are read between nodes: bilinear, periodic Catmull–Rom bicubic, or the
-// exact direct summation of every component (slow). All are exact at the nodes.
-enum class Interpolation { bilinear, bicubic, direct };
-
-// A periodic grid sampled at a world point: exact at nodes, bilinear in between.
-double sample_periodic(const std::vector<double>& grid, int resolution, double size, double x,
-                       double z);
-// The same with periodic Catmull–Rom bicubic interpolation (C¹, exact for quadratics).
-double sample_periodic_bicubic(const std::vector<double>& grid, int resolution, double size,
-                               double x, double z);
-
 // h(k, t) of every cascade, for direct summation at many points of one frame.
 std::vector<EvolvedCascade> evolve_ocean(const Ocean& ocean, double time);
 
@@ -88,11 +79,15 @@ double height_bound(const Ocean& ocean);
 // One cascade's Jacobian determinant (eq. 4.26 with its own u) on its high-resolution grid.
 std::vector<double> cascade_jacobian(const CascadeFields& f, double choppiness);
 
-// The combined fields on cascade 0's footprint (L_0 × L_0 at N_h samples): cascade 0 at its
-// nodes, the other cascades sampled bilinearly from their periodic grids (the renderer's lookup).
+// The combined fields on cascade 0's footprint (L_0 × L_0 at N_h × N_h points, spacing L_0/N_h)
+// at the time of `evolved` (evolve_ocean): every cascade's band-limited fields evaluated exactly
+// at those points (direct_sum_on_lattice), not interpolated — reading the N_l grid of η between
+// its nodes, and the other cascades' grids anywhere, would lose variance (interpolation.h).
+// Combined as the renderer shades with direct summation: finish_surface_combination of the N_l
+// bands for `surface`, finish_combination with the N_h slopes for `high_resolution`.
 std::vector<PointFields> combine_on_footprint(const Ocean& ocean,
-                                              const std::vector<CascadeFields>& fields,
-                                              int threads);
+                                              const std::vector<EvolvedCascade>& evolved,
+                                              ShadingNormals normals, int threads);
 
 // Foam accumulated over a sequence (Vincevičius listing 2.4): the negative-Jacobian indicator
 // of the frames t − steps·Δt, …, t folded with accumulated_foam, starting from no foam.
@@ -105,7 +100,8 @@ struct AccumulatedFoam {
   std::vector<std::vector<double>> cascades;  // per cascade, on its high-resolution grid
   std::vector<double> combined;               // on cascade 0's footprint
 };
+// The combined foam follows the Jacobian of combine_on_footprint with `normals`.
 AccumulatedFoam accumulate_foam(const Ocean& ocean, double time, const FoamSequence& sequence,
-                                int threads);
+                                ShadingNormals normals, int threads);
 
 }  // namespace oceanref

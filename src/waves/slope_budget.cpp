@@ -1,0 +1,106 @@
+#include "waves/slope_budget.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/fp_environment.h"
+#include "core/math.h"
+#include "waves/ocean.h"
+
+namespace oceanref {
+
+WindSlopeVariance resolved_slope_variance(const PatternSpectrum& s, const std::vector<Complex>& h,
+                                          double wind_direction, Interpolation mode,
+                                          SlopeReading reading) {
+  const int n = s.pattern.resolution;
+  const double spacing = s.pattern.size / n;  // Δ
+  const double dk = wavenumber_spacing(s.pattern.size);
+  // Per-axis factors of every wave index (the same along x and z), in physical units.
+  std::vector<AxisTransfer> axis(static_cast<std::size_t>(n));
+  for (int a = 0; a < n; ++a) {
+    AxisTransfer t = axis_transfer(wave_index(a, n), n, mode);
+    t.derivative /= spacing * spacing;
+    t.cross /= spacing;
+    axis[static_cast<std::size_t>(a)] = t;
+  }
+  const math::SinCos wind = math::sincos(wind_direction);
+  double upwind = 0.0;
+  double crosswind = 0.0;
+  for (int b = 0; b < n; ++b) {
+    const AxisTransfer& tz = axis[static_cast<std::size_t>(b)];
+    for (int a = 0; a < n; ++a) {
+      const Complex c = h[grid_offset(a, b, n)];
+      const double power = c.re * c.re + c.im * c.im;  // |h(k, t)|²
+      if (power == 0.0) continue;
+      const AxisTransfer& tx = axis[static_cast<std::size_t>(a)];
+      double m_xx, m_zz, m_xz;
+      if (reading == SlopeReading::derivative_of_height) {
+        m_xx = tx.derivative * tz.value;
+        m_zz = tx.value * tz.derivative;
+        m_xz = tx.cross * tz.cross;
+      } else {
+        const double d_x = derivative_factor(wave_index(a, n), dk, n).im;
+        const double d_z = derivative_factor(wave_index(b, n), dk, n).im;
+        const double v = tx.value * tz.value;
+        m_xx = d_x * d_x * v;
+        m_zz = d_z * d_z * v;
+        m_xz = d_x * d_z * v;
+      }
+      // ŵᵀMŵ along (cos φ, sin φ) and across, (−sin φ, cos φ).
+      upwind += power * (wind.cos * wind.cos * m_xx + 2.0 * wind.cos * wind.sin * m_xz +
+                         wind.sin * wind.sin * m_zz);
+      crosswind += power * (wind.sin * wind.sin * m_xx - 2.0 * wind.cos * wind.sin * m_xz +
+                            wind.cos * wind.cos * m_zz);
+    }
+  }
+  return {upwind, crosswind};
+}
+
+double slope_floor_wavenumber(double minimum_wavelength) {
+  return minimum_wavelength > 0.0 ? 2.0 * std::numbers::pi / minimum_wavelength
+                                  : kDefaultMaxWavenumber * 10.0;
+}
+
+SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wavelength,
+                                          double time, Interpolation mode, ShadingNormals normals) {
+  SlopeVarianceBudget b;
+  b.floor_wavenumber = slope_floor_wavenumber(minimum_wavelength);
+  const double phi = ocean.spectrum.wind_direction;
+  for (const CascadeSpectra& c : ocean.cascades) {
+    const PatternSpectrum& p = normals == ShadingNormals::surface ? c.low : c.high;
+    b.cutoff_wavenumber = std::fmax(
+        b.cutoff_wavenumber,
+        std::fmin(p.pattern.band.upper, nyquist_wavenumber(p.pattern.size, p.pattern.resolution)));
+    const std::vector<Complex> h = spectrum_at_time(p, time);
+    // Direct summation differentiates the summed height in either mode; the grids are read as
+    // the interpolated height (surface) or the interpolated spectral slopes (high resolution).
+    const SlopeReading reading = normals == ShadingNormals::surface || mode == Interpolation::direct
+                                     ? SlopeReading::derivative_of_height
+                                     : SlopeReading::interpolated_slopes;
+    const WindSlopeVariance r = resolved_slope_variance(p, h, phi, mode, reading);
+    const WindSlopeVariance d = resolved_slope_variance(p, h, phi, Interpolation::direct,
+                                                        SlopeReading::derivative_of_height);
+    b.resolved.upwind += r.upwind;
+    b.resolved.crosswind += r.crosswind;
+    b.discrete.upwind += d.upwind;
+    b.discrete.crosswind += d.crosswind;
+  }
+  b.cutoff_wavenumber = std::fmin(b.cutoff_wavenumber, b.floor_wavenumber);
+  b.moment = band_slope_variance(ocean.spectrum, 0.0, b.floor_wavenumber);
+  b.above_cutoff = band_slope_variance(ocean.spectrum, b.cutoff_wavenumber, b.floor_wavenumber);
+  const auto difference = [](const WindSlopeVariance& x, const WindSlopeVariance& y) {
+    return WindSlopeVariance{x.upwind - y.upwind, x.crosswind - y.crosswind};
+  };
+  b.interpolation_loss = difference(b.discrete, b.resolved);
+  b.sampling = difference(difference(b.moment, b.above_cutoff), b.discrete);
+  b.unresolved = difference(b.moment, b.resolved);
+  for (double* v : {&b.unresolved.upwind, &b.unresolved.crosswind}) {
+    if (*v < kMinimumSlopeVariance) {
+      *v = kMinimumSlopeVariance;
+      b.clamped = true;
+    }
+  }
+  return b;
+}
+
+}  // namespace oceanref
