@@ -300,3 +300,39 @@ TEST_CASE("nothing is reflected towards a viewer below the surface") {
             .value == 0.0);
   CHECK(mean_fresnel_reference(below, f, s, {}, 1e-6).value == 1.0);
 }
+
+TEST_CASE("the fast rules are finite and converge to the reference at every order 1..1024") {
+  // The case of the issue (brdf --view 0.3,0.5,0.8 --sun 0.2,0.4,0.9 --sigma2 0.02,0.015), where
+  // the old rule gave F̄ = 0 at order 199 and L_sky.R = 9.2 instead of 228.4 at order 400.
+  // Gauss–Hermite meets the kinks of the integrand (horizon, visibility), so it converges
+  // algebraically: the bounds below are what it reaches, checked at every order up to 128 and
+  // every 8th beyond (plus 199, 200, 1024); the sky, costlier, at a sample of orders.
+  const Sky sky = make_sky(2.5, std::acos(0.4 / std::sqrt(1.01)), std::atan2(0.9, 0.2));
+  const SurfaceFrame f = wind_frame(unit(0, 1, 0), 0.0);
+  const Vec3 view = unit(0.3, 0.5, 0.8);
+  const SlopeVariance s{0.02, 0.015};
+  const double fresnel = mean_fresnel_reference(view, f, s, {}, 1e-10).value;
+  const double sky_r = reflected_sky_reference(view, f, s, sky, {}, 1e-10, {}).value[0];
+  std::vector<int> orders;
+  for (int n = 1; n <= 128; ++n) orders.push_back(n);
+  for (int n = 136; n <= kMaxQuadratureOrder; n += 8) orders.push_back(n);
+  orders.push_back(199);
+  orders.push_back(200);
+  for (const int n : orders) {
+    CAPTURE(n);
+    const QuadratureRule rule = gauss_hermite(n);
+    const double m = mean_fresnel(view, f, s, rule);
+    REQUIRE(std::isfinite(m));
+    CHECK(std::fabs(m - fresnel) <= (n < 4 ? 0.1 : n < 16 ? 1e-4 : 1e-7) * fresnel);
+    if (n <= 16 || n % 64 == 0 || n == 199 || n == 200) {
+      const double l = reflected_sky(view, f, s, sky, rule)[0];
+      REQUIRE(std::isfinite(l));
+      CHECK(std::fabs(l - sky_r) <= (n < 4     ? 0.3
+                                     : n < 8   ? 0.05
+                                     : n < 32  ? 0.03
+                                     : n < 256 ? 1e-3
+                                               : 2e-4) *
+                                        sky_r);
+    }
+  }
+}

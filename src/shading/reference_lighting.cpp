@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/math.h"
-#include "shading/adaptive_cubature.h"
 #include "shading/ocean_lighting.h"
+#include "spectrum/adaptive_cubature.h"
 
 namespace oceanref {
 
