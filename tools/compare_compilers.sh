@@ -34,9 +34,10 @@ for c in "${commands[@]}"; do
     failures=$((failures + 1))
   fi
 done
-# The default scene's pixels (small size via --spp 1; the hash is printed by render).
-if ! build/src/oceanref render reference/scenes/default.json -o "$tmp/gcc_r.exr" --spp 1 >"$tmp/gcc_h" ||
-  ! build-clang/src/oceanref render reference/scenes/default.json -o "$tmp/clang_r.exr" --spp 1 >"$tmp/clang_h" ||
+# The default scene at 96x54 (reference lighting, ~1 ms per sea sample).
+scene=reference/scenes/golden/default_small.json
+if ! build/src/oceanref render "$scene" -o "$tmp/gcc_r.exr" >"$tmp/gcc_h" ||
+  ! build-clang/src/oceanref render "$scene" -o "$tmp/clang_r.exr" >"$tmp/clang_h" ||
   ! cmp -s "$tmp/gcc_h" "$tmp/clang_h"; then
   echo "FAIL: gcc and clang builds render different pixels" >&2
   failures=$((failures + 1))

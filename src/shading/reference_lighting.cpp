@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <numbers>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "core/math.h"
@@ -84,10 +85,18 @@ Estimate<N> integrate_line(const H& h, const CubatureTolerance<N>& tolerance) {
 double clamp_unit(double x) {
   return std::fmin(std::fmax(x, -1.0), 1.0);
 }
+
+// The integrals are over a Gaussian of slopes: a perfect mirror (σ² = 0) has none.
+void require_roughness(SlopeVariance s) {
+  if (!(s.x > 0.0 && s.y > 0.0 && std::isfinite(s.x) && std::isfinite(s.y))) {
+    throw std::invalid_argument("reference lighting: slope variances must be finite and > 0");
+  }
+}
 }  // namespace
 
 ScalarEstimate mean_fresnel_reference(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
                                       const BrdfOptions& options, double relative) {
+  require_roughness(s);
   const double vn = dot(view, f.normal);
   if (!(vn > 0.0)) return {fresnel_reflectance(0.0, options.fresnel), 0.0, 0, true};
   const double sx = std::sqrt(2.0 * s.x);
@@ -133,6 +142,7 @@ ScalarEstimate mean_fresnel_reference(const Vec3& view, const SurfaceFrame& f, S
 RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
                                     const Sky& sky, const BrdfOptions& options, double relative,
                                     const Vec3& absolute) {
+  require_roughness(s);
   const ViewTerms v = view_terms(view, f, s, options.erfc);
   if (!(v.cos_theta > 0.0)) return {};
   const double vn = v.cos_theta;
@@ -209,6 +219,7 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
                                        const SurfaceFrame& f, SlopeVariance s,
                                        const BrdfOptions& options, double relative,
                                        double absolute) {
+  require_roughness(s);
   const ViewTerms v = view_terms(view, f, s, options.erfc);
   if (!(v.cos_theta > 0.0)) return {};
   const auto [u, w] = sun_disk_axes(sun);

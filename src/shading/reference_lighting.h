@@ -25,6 +25,8 @@
 namespace oceanref {
 
 inline constexpr double kSlopeTruncation = 6.0;  // |t| bound of the slope plane (see above)
+// Each function below requires σ_x², σ_y² > 0 (std::invalid_argument otherwise; the renderer's
+// slope budget floors σ² at 1e-10).
 // The accepted range of relative tolerances (scene key shading.tolerance, brdf --tolerance).
 inline constexpr double kMinLightingTolerance = 1e-10;
 inline constexpr double kMaxLightingTolerance = 1e-2;
