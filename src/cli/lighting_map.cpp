@@ -533,7 +533,7 @@ std::string svg_text(const Map& map) {
     // left out: the CSV has every point).
     std::vector<std::array<double, 4>> placed;  // x0, y0, x1, y1
     const auto place_label = [&](double x, double y, const std::string& text, bool above) {
-      const double w = 5.0 * static_cast<double>(text.size()), h = 9.0;
+      const double w = 5.6 * static_cast<double>(text.size()), h = 10.0;
       const double candidates[][2] = {{5.0, above ? -5.0 : 12.0},
                                       {5.0, above ? 12.0 : -5.0},
                                       {-5.0 - w, above ? -5.0 : 12.0},
