@@ -20,7 +20,7 @@
 #                    nothing)
 #       --threads N  render threads (default: all cores); the map's timings use one thread
 #
-# Takes about 10 minutes on 2 cores (the map about 5, the renders the rest).
+# Takes 4 to 7 minutes on the 2-core machine (the map about one, the golden renders the rest).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
