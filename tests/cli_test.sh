@@ -219,6 +219,30 @@ expect 2 'differ in size' compare "$tmp/r1.exr" "$tmp/sky.exr"
 expect 2 'cannot read' compare "$tmp/r1.exr" "$tmp/missing.exr"
 expect 2 '--yes' golden update --root reference
 
+# --- bench lighting-map and lighting-pixels (tools/lighting_accuracy_map.sh) -------------------
+expect 0 '--csv' bench lighting-map --help
+for flag in --svg --threads --quick; do
+  grep -q -- "$flag" "$tmp/out" || fail "bench lighting-map --help does not list $flag"
+done
+expect 0 '^\| fast \| order 4x4 \(default\)' bench lighting-map --quick --csv "$tmp/map.csv" \
+  --svg "$tmp/map.svg"
+grep -q '^integral,mode,setting,cases,median_relative_error' "$tmp/map.csv" ||
+  fail "bench lighting-map --csv has no header"
+[ "$(grep -c '^reflected_sky,' "$tmp/map.csv")" -eq 6 ] ||
+  fail "bench lighting-map --quick: not 3 fast orders and 3 tolerances for the sky"
+head -c 4 "$tmp/map.svg" | grep -q '<svg' || fail "bench lighting-map --svg is not an SVG"
+expect 2 '--threads' bench lighting-map --quick --threads 0
+expect 2 'not expected' bench lighting-map --bogus
+"$bin" render "$tmp/render.json" -o "$tmp/aov.exr" --aov --spp 1 >/dev/null
+expect 0 '^sea_pixels,pixels,median,p95,max,layer_median,layer_p95,layer_max$' \
+  bench lighting-pixels "$tmp/aov.exr" "$tmp/aov.exr"
+# Against itself: no difference, and the layer (|fast - reference| + estimate) is not 0.
+awk -F, 'NR == 2 { exit !($1 > 0 && $3 == 0 && $5 == 0 && $8 > 0) }' "$tmp/out" ||
+  fail "bench lighting-pixels of an image against itself: $(cat "$tmp/out")"
+expect 2 "no channel 'coverage'" bench lighting-pixels "$tmp/r1.exr" "$tmp/r1.exr"
+expect 2 'differ in size' bench lighting-pixels "$tmp/aov.exr" "$tmp/sky.exr"
+expect 2 'REFERENCE' bench lighting-pixels "$tmp/aov.exr" "$tmp/missing.exr"
+
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)
 "$bin" "${args[@]}" >"$tmp/a" && "$bin" "${args[@]}" >"$tmp/b"

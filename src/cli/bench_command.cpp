@@ -14,6 +14,7 @@
 #include <ostream>
 #include <string>
 
+#include "cli/lighting_map.h"
 #include "cli/text.h"
 #include "core/math.h"
 #include "scene/scene.h"
@@ -636,6 +637,41 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   lighting->add_option("--order", *lighting_order, "Gauss-Hermite order of the exact terms")
       ->check(CLI::Range(4, 512))
       ->capture_default_str();
+  auto map_options = std::make_shared<LightingMapOptions>();
+  CLI::App* lighting_map = bench->add_subcommand(
+      "lighting-map",
+      "The speed/accuracy map of the lighting integrals (reflected sky, mean Fresnel, sun "
+      "disk): over a fixed sweep of views (V.N 0.9 to 0.002), roughness (sigma^2 1e-6 to 1, "
+      "anisotropic too), flat and tilted normals and suns high, low and at the horizon, the "
+      "median, 95th percentile and largest relative error against a truth (reference at "
+      "tolerance 1e-10) and the time per integral of every fast order and every reference "
+      "tolerance 1e-2..1e-9, and the count of reference error estimates below the actual "
+      "error. Prints markdown tables; takes a few minutes (tools/lighting_accuracy_map.sh).");
+  lighting_map->add_option("--csv", map_options->csv, "OUT.csv: every row of the map");
+  lighting_map->add_option("--svg", map_options->svg,
+                           "OUT.svg: error versus time per integral, log-log");
+  lighting_map->add_option("--threads", map_options->threads, "worker threads for the truths")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  lighting_map->add_flag("--quick", map_options->quick,
+                         "a tiny sweep, fewer orders and tolerances (a smoke test, not a "
+                         "measurement)");
+  struct PixelFlags {
+    std::string fast, reference;
+  };
+  auto pixel_flags = std::make_shared<PixelFlags>();
+  CLI::App* lighting_pixels = bench->add_subcommand(
+      "lighting-pixels",
+      "The per-pixel error of a fast render against a reference render of the same scene over "
+      "sea pixels (coverage > 0): |fast - reference|/|reference| (largest channel per pixel) "
+      "and the same from the fast render's lighting_error layer; CSV of median, 95th "
+      "percentile and largest.");
+  lighting_pixels->add_option("FAST_AOV", pixel_flags->fast, "fast render written with --aov")
+      ->required()
+      ->check(CLI::ExistingFile);
+  lighting_pixels->add_option("REFERENCE", pixel_flags->reference, "reference render (.exr)")
+      ->required()
+      ->check(CLI::ExistingFile);
   struct RenderFlags {
     std::string scene = "reference/scenes/default.json";
     int threads = 2, width = 1280, height = 720, spp = 4;
@@ -669,8 +705,16 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   study->add_option("--threads", study_flags->threads, "worker threads")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
-  return [flags, synthesis, lighting, lighting_order, render_cmd, render_flags, study,
-          study_flags](std::ostream& out) {
+  return [flags, synthesis, lighting, lighting_order, render_cmd, render_flags, study, study_flags,
+          lighting_map, map_options, lighting_pixels, pixel_flags](std::ostream& out) {
+    if (lighting_map->parsed()) {
+      bench_lighting_map(out, *map_options);
+      return;
+    }
+    if (lighting_pixels->parsed()) {
+      bench_lighting_pixels(out, pixel_flags->fast, pixel_flags->reference);
+      return;
+    }
     if (study->parsed()) {
       bench_study(out, study_flags->scene, study_flags->threads);
       return;
