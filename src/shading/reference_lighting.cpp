@@ -246,9 +246,12 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
   const double r0 = std::fmin(math::acos(clamp_unit(dot(mirror, sun))) / radius, 1.0);
   const double x0 = q > 0.0 ? r0 * qx / q : 0.0;
   const double y0 = q > 0.0 ? r0 * qy / q : 0.0;
-  // The lobe's width in disk units, ~2σ/ρ_s (the half vector turns half as fast as L). A lobe
-  // narrower than the disk gets breakpoints at geometrically growing distances from its peak,
-  // so that no Kronrod rule straddles it unseen (σ² is floored at 1e-10 by the slope budget).
+  // The lobe's narrowest width in disk units: at the specular configuration ζ moves by
+  // |dL_t|/|L + V| = |dL_t|/(2 v_n) for a tangential dL, so the lobe is 2 v_n σ wide across the
+  // plane of incidence (a thin arc at grazing view) and ~2σ along it. A lobe narrower than the
+  // disk gets breakpoints at geometrically growing distances from its peak, so that no Kronrod
+  // rule straddles it unseen (σ² is floored at 1e-10 by the slope budget). The disk's axis u is
+  // horizontal (sun_disk_axes), across the arc of a flat sea.
   const double lobe = 2.0 * std::sqrt(std::fmin(s.x, s.y)) / radius;
   const auto around = [lobe](double centre, double lo, double hi) {
     std::vector<double> b{lo, centre, hi};

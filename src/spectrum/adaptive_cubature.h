@@ -120,6 +120,18 @@ Interval<N> kronrod_interval(const F& f, double a, double b, Estimate<N>& totals
     r.carried_error[c] = carried * half;
     if (!std::isfinite(r.value[c])) r.rule_error[c] = std::numeric_limits<double>::infinity();
   }
+  // The channels are one integrand's components (R, G, B of one radiance): a channel whose
+  // K15 − G7 happens to cancel must not claim more accuracy than its siblings, so every channel
+  // gets at least the largest relative rule error times its own magnitude.
+  double relative = 0.0;
+  for (std::size_t c = 0; c < N; ++c) {
+    if (std::fabs(r.value[c]) > 0.0) {
+      relative = std::fmax(relative, r.rule_error[c] / std::fabs(r.value[c]));
+    }
+  }
+  for (std::size_t c = 0; c < N; ++c) {
+    r.rule_error[c] = std::fmax(r.rule_error[c], relative * std::fabs(r.value[c]));
+  }
   return r;
 }
 }  // namespace cubature_detail
