@@ -133,7 +133,9 @@ std::array<double, 2> fresnel_by_slopes(const Vec3& view, const SurfaceFrame& f,
 // ∫_disk f cos θ_L dω in polar coordinates (ρ, ψ) about the sun, dω = sin ρ dρ dψ.
 double sun_by_polar(const Vec3& sun, double radius, const Vec3& view, const SurfaceFrame& f,
                     SlopeVariance s) {
-  const auto [u, w] = sun_disk_axes(sun);
+  const std::array<Vec3, 2> axes = sun_disk_axes(sun);  // (u, w); clang 15 cannot capture bindings
+  const Vec3& u = axes[0];
+  const Vec3& w = axes[1];
   Vec3 mirror{};
   const double vn = dot(view, f.normal);
   for (std::size_t k = 0; k < 3; ++k) mirror[k] = 2.0 * vn * f.normal[k] - view[k];

@@ -222,7 +222,9 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
   require_roughness(s);
   const ViewTerms v = view_terms(view, f, s, options.erfc);
   if (!(v.cos_theta > 0.0)) return {};
-  const auto [u, w] = sun_disk_axes(sun);
+  const std::array<Vec3, 2> axes = sun_disk_axes(sun);  // (u, w); clang 15 cannot capture bindings
+  const Vec3& u = axes[0];
+  const Vec3& w = axes[1];
   // A point (x, y) of the unit disk is the direction at angle ρ = ρ_s r (r = |(x, y)|) from the
   // sun towards u x + w y: L = cos ρ S + (sin ρ/r)(x u + y w), dω = (sin ρ/ρ) ρ_s² dx dy.
   const auto direction = [&](double x, double y, double& solid_angle_density) {
