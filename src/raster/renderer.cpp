@@ -120,21 +120,11 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
   }
   const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   const SlopeVariance s{unresolved.upwind, unresolved.crosswind};
-  const LightingTerms terms =
-      lighting_terms(sh, job.sky, light, p.view, frame, s, job.estimate_fast_error);
-  p.sun = terms.sun;
-  p.sky = terms.sky;
-  p.sea = terms.sea;
-  p.mean_fresnel = terms.mean_fresnel;
-  p.mean_fresnel_error = terms.mean_fresnel_error;
-  p.sun_error = terms.sun_error;
-  p.sky_error = terms.sky_error;
-  p.sea_error = terms.sea_error;
-  p.evaluations = terms.evaluations;
-  p.converged = terms.converged;
+  p.lighting = lighting_terms(sh, job.sky, light, p.view, frame, s, job.estimate_fast_error);
+  const LightingTerms& l = p.lighting;
   for (std::size_t c = 0; c < 3; ++c) {
-    p.radiance[c] = p.sun[c] + p.sky[c] + p.sea[c];
-    p.lighting_error[c] = p.sun_error[c] + p.sky_error[c] + p.sea_error[c];
+    p.radiance[c] = l.sun[c] + l.sky[c] + l.sea[c];
+    p.lighting_error[c] = l.sun_error[c] + l.sky_error[c] + l.sea_error[c];
   }
   if (sh.whitecaps) {
     // Per-sample indicator; the S×S samples of a pixel give its footprint coverage.
@@ -235,14 +225,14 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
           const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
           for (std::size_t c = 0; c < 3; ++c) {
             image.radiance[pixel][c] += per_sample * p.radiance[c];
-            image.sun[pixel][c] += per_sample * p.sun[c];
-            image.sky[pixel][c] += per_sample * p.sky[c];
-            image.sea[pixel][c] += per_sample * p.sea[c];
+            image.sun[pixel][c] += per_sample * p.lighting.sun[c];
+            image.sky[pixel][c] += per_sample * p.lighting.sky[c];
+            image.sea[pixel][c] += per_sample * p.lighting.sea[c];
             image.foam[pixel][c] += per_sample * p.whitecap_coverage * p.foam[c];
             image.lighting_error[pixel][c] += per_sample * p.lighting_error[c];
           }
-          if (!p.converged) ++row_unconverged;
-          row_evaluations += p.evaluations;
+          if (!p.lighting.converged) ++row_unconverged;
+          row_evaluations += p.lighting.evaluations;
           if (p.hit) {
             image.depth[pixel] += p.depth;
             for (std::size_t c = 0; c < 3; ++c) image.normal[pixel][c] += p.normal[c];

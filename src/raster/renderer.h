@@ -87,14 +87,10 @@ struct SampleProbe {
   PointFields fields;
   Vec3 normal{};
   Vec3 view{};
-  double mean_fresnel = 0.0;
-  Vec3 sun{}, sky{}, sea{}, foam{}, radiance{};
+  LightingTerms lighting;  // sun, sky, sea, F̄ and their estimated errors
+  Vec3 foam{}, radiance{};
   double whitecap_coverage = 0.0;
-  // Estimated absolute errors of the terms (see RenderedImage::lighting_error).
-  double mean_fresnel_error = 0.0;
-  Vec3 sun_error{}, sky_error{}, sea_error{}, lighting_error{};
-  long evaluations = 0;  // integrand evaluations of the reference integrals
-  bool converged = true;
+  Vec3 lighting_error{};  // of `radiance` (see RenderedImage::lighting_error)
 };
 // The shading of one sample of the image (its fragment from a full raster pass).
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
