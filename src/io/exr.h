@@ -24,6 +24,15 @@ struct ExrImage {
   bool srgb_chromaticities = false;  // write the standard chromaticities of linear sRGB (D65)
 };
 
+// One part of a multi-part EXR file (its `name` attribute), at one resolution level of a
+// tiled multi-resolution part (0, 0 for scanline parts and the full-resolution level).
+struct ExrPart {
+  std::string name;
+  int level_x = 0;
+  int level_y = 0;
+  ExrImage image;
+};
+
 // Writes with ZIP compression; throws std::runtime_error naming the file on failure.
 void write_exr(const std::string& path, const ExrImage& image);
 // Reads every channel as float (at its own sampling) and the string attributes.
