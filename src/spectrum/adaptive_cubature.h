@@ -2,10 +2,12 @@
 // their own error estimates: the building block of the reference lighting integrals, which are
 // iterated integrals (an outer adaptive rule whose integrand is an inner adaptive integral).
 //
-// Error accounting: the estimate of a result is Σ |K15 − G7| over the final intervals (the rule
-// error, QUADPACK's raw estimate without its empirical rescaling, so conservative for smooth
-// integrands) plus the K15-weighted integral of the integrand's own errors (the inner integrals'
-// estimates carried into the outer one). A result is converged when, for every channel c,
+// Error accounting: the estimate of a result is the sum over the final intervals of QUADPACK's
+// rescaled |K15 − G7| (rescaled_error below) plus the K15-weighted integral of the integrand's
+// own errors (the inner integrals' estimates carried into the outer one). Like every such
+// estimate it assumes that each interval's integrand is smooth: callers put breakpoints at the
+// integrand's kinks, cusps and steep turns (reference_lighting.cpp). A result is converged
+// when, for every channel c,
 //   error[c] ≤ max(absolute[c], relative·|value[c]|).
 // Deterministic: the interval with the largest rule error relative to its channel budgets is
 // split first (ties: the leftmost), and sums run in the fixed order of the intervals.
