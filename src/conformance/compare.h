@@ -149,8 +149,9 @@ std::vector<ExrPart> read_parts_for_compare(const std::string& path);
 
 // --suggest: per-channel thresholds from a set of candidate runs. Channels are grouped by their
 // name with every run of digits replaced by '*' (c0.height, c1.height → c*.height), over all
-// parts (the rule's part pattern is "*"); per group R = safety · (largest e over all runs and channels of the group), A = 0,
-// U = 0, S = 0, F = floor. Groups where every run matched exactly get R = 0.
+// parts (the rule's part pattern is "*"); per group R = safety · (largest e over all runs and
+// channels of the group), A = 0, U = 0, S = 0, F = floor. Groups where every run matched exactly
+// get R = 0.
 struct SuggestedRule {
   std::string part, channel;
   double measured_max_relative = 0.0;
