@@ -9,7 +9,6 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "conformance/compare.h"
 #include "io/exr.h"
 #include "scene/scene.h"
 
@@ -198,33 +197,6 @@ TEST_CASE("foam of a sequence: steps = 0 is the indicator; accumulation never dr
     lingering += acc.cascades[0][c] > now.cascades[0][c] ? 1 : 0;
   }
   CHECK(lingering > 0);  // foam from earlier frames decays instead of vanishing
-}
-
-TEST_CASE("compare: ULP distance and metrics of known differences") {
-  CHECK(ulp_distance(1.0f, 1.0f) == 0);
-  CHECK(ulp_distance(1.0f, std::nextafter(1.0f, 2.0f)) == 1);
-  CHECK(ulp_distance(-0.0f, 0.0f) == 0);
-  CHECK(ulp_distance(std::nextafter(0.0f, -1.0f), std::nextafter(0.0f, 1.0f)) == 2);
-  ExrImage a;
-  a.width = 2;
-  a.height = 2;
-  a.channels = {{"R", 1, {1.0f, 2.0f, 3.0f, 4.0f}}};
-  ExrImage b = a;
-  b.channels[0].values[3] = 4.5f;
-  const Comparison c = compare_images(a, b, {});
-  REQUIRE(c.channels.size() == 1);
-  CHECK(c.channels[0].max_absolute == 0.5);
-  CHECK(c.channels[0].max_relative == doctest::Approx(0.125));
-  CHECK(c.channels[0].rmse == doctest::Approx(0.25));  // √(0.25/4)
-  CHECK(c.channels[0].psnr == doctest::Approx(20.0 * std::log10(4.0 / 0.25)));
-  CHECK(c.channels[0].worst_x == 1);
-  CHECK(c.channels[0].worst_y == 1);
-  CHECK(c.failing_share == 0.25);
-  CHECK_FALSE(c.pass);
-  CHECK(compare_images(a, b, {0.5, 0.0, 0, 0.0}).pass);
-  CHECK(compare_images(a, b, {0.0, 0.0, 0, 0.25}).pass);
-  b.width = 1;
-  CHECK_THROWS_AS(compare_images(a, b, {}), std::invalid_argument);
 }
 
 TEST_CASE("scene: the lighting accuracy settings belong to their mode") {

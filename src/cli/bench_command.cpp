@@ -16,6 +16,8 @@
 
 #include "cli/lighting_map.h"
 #include "cli/text.h"
+#include "conformance/compare.h"
+#include "conformance/float32_backend.h"
 #include "core/math.h"
 #include "scene/scene.h"
 #include "shading/ocean_lighting.h"
@@ -129,51 +131,6 @@ Run time_pipeline(const Ocean& ocean, const Flags& f, InverseFft2d fft) {
   return run;
 }
 
-struct ComplexF {
-  float re, im;
-};
-ComplexF to_float(Complex a) {
-  return {static_cast<float>(a.re), static_cast<float>(a.im)};
-}
-ComplexF multiply(ComplexF a, ComplexF b) {
-  return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re};
-}
-
-// One field of one pattern computed entirely in float (the arithmetic of a GPU shader):
-// h(k, t) with float phases, float multipliers and an FFTW float transform.
-std::vector<float> float_field(const PatternSpectrum& s, double time, Field field) {
-  const int n = s.pattern.resolution;
-  const double dk = wavenumber_spacing(s.pattern.size);
-  fftwf_complex* c = fftwf_alloc_complex(grid_cells(n));
-  const fftwf_plan plan = fftwf_plan_dft_2d(n, n, c, c, FFTW_BACKWARD, FFTW_ESTIMATE);
-  for (int b = 0; b < n; ++b) {
-    for (int a = 0; a < n; ++a) {
-      const std::size_t i = grid_offset(a, b, n);
-      const std::size_t ic =
-          grid_offset(conjugate_array_index(a, n), conjugate_array_index(b, n), n);
-      const float phase = static_cast<float>(s.omega[i]) * static_cast<float>(time);
-      // A shader's float cos/sin: the portable double value rounded to float.
-      const math::SinCos e = math::sincos(static_cast<double>(phase));
-      const ComplexF forward{static_cast<float>(e.cos), -static_cast<float>(e.sin)};
-      const ComplexF a0 = multiply(to_float(s.h0[i]), forward);
-      const ComplexF b0 = multiply(to_float(s.h0[ic]), forward);
-      const ComplexF h{0.5f * (a0.re + b0.re), 0.5f * (a0.im - b0.im)};  // ½(a + b*)
-      const ComplexF v =
-          multiply(to_float(field_multiplier(field, wave_index(a, n), wave_index(b, n), dk,
-                                             s.inverse_wavenumber[i], n)),
-                   h);
-      c[i][0] = v.re;
-      c[i][1] = v.im;
-    }
-  }
-  fftwf_execute(plan);
-  std::vector<float> out(grid_cells(n));
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = c[i][0];
-  fftwf_destroy_plan(plan);
-  fftwf_free(c);
-  return out;
-}
-
 void bench_synthesis(std::ostream& out, const Flags& f) {
   WaveSettings w;
   w.seed = f.seed;
@@ -243,7 +200,7 @@ void bench_synthesis(std::ostream& out, const Flags& f) {
     for (int q = 0; q < kFieldCount; ++q) {
       const Field field = Field(q);
       const PatternSpectrum& s = is_low_resolution_field(field) ? c0.low : c0.high;
-      const std::vector<float> single = float_field(s, t, field);
+      const std::vector<float> single = float32_field(s, t, field);
       const std::vector<double>& exact = d.values[static_cast<std::size_t>(q)];
       double peak = 0.0;
       double error = 0.0;
@@ -705,8 +662,74 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   study->add_option("--threads", study_flags->threads, "worker threads")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
-  return [flags, synthesis, lighting, lighting_order, render_cmd, render_flags, study, study_flags,
-          lighting_map, map_options, lighting_pixels, pixel_flags](std::ostream& out) {
+  struct Float32Flags {
+    std::string scene, output, golden, defect = "none";
+    double time = 0.0;
+    bool time_given = false;
+    int threads = 2;
+  };
+  auto float32_flags = std::make_shared<Float32Flags>();
+  CLI::App* float32 = bench->add_subcommand(
+      "float32",
+      "The float32 example backend (src/conformance/float32_backend.h): every raw wave field of "
+      "every cascade computed in float32 (float phases and products, FFTW float), written as a "
+      "candidate EXR; --golden writes oceanref's double fields rounded to float32 in the same "
+      "layout. Then: oceanref compare GOLDEN CANDIDATE --profile "
+      "reference/profiles/fields_float32.json. One EXR per part: OUT.<part>.exr (parts c<i> on "
+      "N_h and, with multi-resolution, c<i>.low on N_l).");
+  float32->add_option("SCENE", float32_flags->scene, "scene file")->required();
+  float32
+      ->add_option("-o,--output", float32_flags->output,
+                   "candidate: OUT.exr (writes OUT.<part>.exr)")
+      ->required();
+  float32->add_option("--golden", float32_flags->golden,
+                      "also write the golden: GOLDEN.exr (GOLDEN.<part>.exr)");
+  float32->add_option("--time", float32_flags->time, "time t [s] (default: the scene's)")
+      ->check(CLI::Range(0.0, 1e7));
+  float32
+      ->add_option("--defect", float32_flags->defect,
+                   "a deliberate bug, to see the profile catch it")
+      ->check(CLI::IsMember({"none", "drop-conjugate-term", "half-float-phase"}))
+      ->capture_default_str();
+  float32->add_option("--threads", float32_flags->threads, "worker threads (golden)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  return [float32, float32_flags, flags, synthesis, lighting, lighting_order, render_cmd,
+          render_flags, study, study_flags, lighting_map, map_options, lighting_pixels,
+          pixel_flags](std::ostream& out) {
+    if (float32->parsed()) {
+      const Float32Flags& g = *float32_flags;
+      Scene scene;
+      try {
+        scene = load_scene(g.scene);
+      } catch (const std::exception& e) {
+        throw UsageError("SCENE", e.what());
+      }
+      const double time = float32->count("--time") > 0 ? g.time : scene.time;
+      const Ocean ocean = realize_ocean(scene.waves, g.threads);
+      const Float32Defect defect =
+          g.defect == "drop-conjugate-term"
+              ? Float32Defect::drop_conjugate_term
+              : (g.defect == "half-float-phase" ? Float32Defect::half_float_phase
+                                                : Float32Defect::none);
+      const auto write_parts = [&](const std::string& path, const std::vector<ExrPart>& parts) {
+        // One file per part (OUT.<part>.exr) until io/exr writes multi-part files.
+        const std::string stem =
+            path.size() > 4 && path.ends_with(".exr") ? path.substr(0, path.size() - 4) : path;
+        for (std::size_t i = 0; i < parts.size(); ++i) {
+          ExrImage image = parts[i].image;
+          image.attributes["oceanref.part"] = parts[i].name;
+          image.attributes["oceanref.time_s"] = format_number(time);
+          image.attributes["oceanref.backend"] =
+              std::string("float32 example backend, defect ") + g.defect;
+          write_exr(stem + "." + parts[i].name + ".exr", image);
+          out << "wrote " << stem << "." << parts[i].name << ".exr\n";
+        }
+      };
+      write_parts(g.output, float32_fields_parts(ocean, time, defect));
+      if (!g.golden.empty()) write_parts(g.golden, reference_fields_parts(ocean, time, g.threads));
+      return;
+    }
     if (lighting_map->parsed()) {
       bench_lighting_map(out, *map_options);
       return;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "cli/fields_command.h"
@@ -21,17 +22,6 @@
 namespace oceanref::cli {
 
 namespace {
-void write_metrics(std::ostream& out, const Comparison& c) {
-  out << "channel,max_abs,max_rel,rmse,psnr_db,max_ulp,failing_share,worst_x,worst_y\n";
-  for (const ChannelMetrics& m : c.channels) {
-    out << m.name << ',' << format_number(m.max_absolute) << ',' << format_number(m.max_relative)
-        << ',' << format_number(m.rmse) << ',' << format_number(m.psnr) << ',' << m.max_ulp << ','
-        << format_number(m.failing_share) << ',' << m.worst_x << ',' << m.worst_y << '\n';
-  }
-  out << "result," << (c.pass ? "pass" : "fail") << ",failing_pixels_share,"
-      << format_number(c.failing_share) << '\n';
-}
-
 // SHA-256 of every channel's float32 values (little-endian), channels in name order.
 std::string channels_hash(const ExrImage& image) {
   std::vector<const ExrChannel*> sorted;
@@ -46,46 +36,222 @@ std::string channels_hash(const ExrImage& image) {
   }
   return sha256_hex(bytes);
 }
+
+// Writes `text` to `path` atomically (temporary name, then rename).
+void write_text_file(const std::string& flag, const std::string& path, const std::string& text) {
+  const std::filesystem::path target(path);
+  const std::filesystem::path temporary = target.string() + ".tmp";
+  {
+    std::ofstream file(temporary);
+    file << text;
+    if (!file) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw UsageError(flag, path + ": cannot write");
+    }
+  }
+  std::filesystem::rename(temporary, target);
+}
+
+std::vector<ExrPart> read_parts(const std::string& flag, const std::string& path) {
+  try {
+    return read_parts_for_compare(path);
+  } catch (const std::exception& e) {
+    throw UsageError(flag, e.what());
+  }
+}
+
+// The list file of --suggest: one run per line, "CANDIDATE" (against GOLDEN) or
+// "GOLDEN CANDIDATE"; blank lines and lines starting with '#' are skipped. Relative paths are
+// relative to the list file's folder.
+std::vector<std::pair<std::string, std::string>> read_run_list(const std::string& path,
+                                                               const std::string& golden) {
+  std::ifstream in(path);
+  if (!in) throw UsageError("--list", path + ": cannot read");
+  const std::filesystem::path base = std::filesystem::path(path).parent_path();
+  const auto resolve = [&](const std::string& p) {
+    return std::filesystem::path(p).is_absolute() ? p : (base / p).string();
+  };
+  std::vector<std::pair<std::string, std::string>> runs;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string x; words >> x;) w.push_back(x);
+    if (w.empty() || w[0][0] == '#') continue;
+    if (w.size() == 1) {
+      if (golden.empty()) {
+        throw UsageError(
+            "--list", path + ":" + std::to_string(number) + ": one file, but no GOLDEN was given");
+      }
+      runs.emplace_back(golden, resolve(w[0]));
+    } else if (w.size() == 2) {
+      runs.emplace_back(resolve(w[0]), resolve(w[1]));
+    } else {
+      throw UsageError("--list", path + ":" + std::to_string(number) +
+                                     ": expected CANDIDATE or GOLDEN CANDIDATE");
+    }
+  }
+  if (runs.empty()) throw UsageError("--list", path + ": no run listed");
+  return runs;
+}
 }  // namespace
 
 std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
   struct Flags {
-    std::string a, b, report;
-    double absolute = 0.0, relative = 0.0, share = 0.0;
-    long long ulp = 0;
+    std::vector<std::string> files;
+    std::string report, profile, channels, json, format = "text", list, output, name;
+    ChannelThreshold threshold;
+    bool alpha = false, suggest = false;
+    double safety = 4.0;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
       "compare",
-      "Compare a candidate EXR with a golden one channel by channel: max absolute and relative "
-      "error, RMSE, PSNR, max float32 ULP distance, failing share, worst pixel. Exit 0 pass, "
-      "1 fail, 2 bad input. A value fails if |a-b| > abs + rel*|a| and its ULP distance > ulp.");
-  cmd->add_option("GOLDEN", f->a, "golden EXR")->required();
-  cmd->add_option("CANDIDATE", f->b, "candidate EXR")->required();
-  cmd->add_option("--abs", f->absolute, "absolute tolerance (0)")->check(CLI::Range(0.0, 1e30));
-  cmd->add_option("--rel", f->relative, "relative tolerance (0)")->check(CLI::Range(0.0, 1e30));
-  cmd->add_option("--ulp", f->ulp, "allowed float32 ULP distance (0)")
-      ->check(CLI::Range(0LL, 4294967296LL));
-  cmd->add_option("--max-fail-share", f->share, "allowed share of failing pixels in [0, 1] (0)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--report", f->report, "DIR: diff.exr, golden/candidate/diff PNGs, index.html");
-  return [f](std::ostream& out) {
-    ExrImage golden;
-    ExrImage candidate;
-    try {
-      golden = read_exr(f->a);
-      candidate = read_exr(f->b);
-    } catch (const std::exception& e) {
-      throw UsageError("compare", e.what());
+      "Compare a candidate EXR with a golden one, every part and level, channel by channel. "
+      "Per value: scale s = max(|g|, F*RMS(g)) (RMS of the golden channel), relative error "
+      "e = |c-g|/s; the value passes if |c-g| <= A + R*s, or if its float32 ULP distance <= U; "
+      "a channel passes if at most S of its values fail. Any non-finite mismatch (NaN or +-Inf "
+      "on one side only, +Inf vs -Inf, NaN vs Inf) fails, always. Prints per channel the "
+      "percentiles p50/p90/p99/p99.9/max of e, the largest |c-g|, RMS(g), the largest ULP "
+      "distance, the failing share and the worst pixel. Exit 0 pass, 1 fail, 2 bad input. "
+      "With --suggest: derive per-channel thresholds from several candidate runs.");
+  cmd->add_option("FILES", f->files,
+                  "GOLDEN.exr CANDIDATE.exr (with --suggest: GOLDEN CANDIDATE... or GOLDEN "
+                  "--list FILE or --list FILE)")
+      ->expected(0, -1);
+  auto* abs = cmd->add_option("--abs", f->threshold.absolute, "A: absolute tolerance (0)")
+                  ->check(CLI::Range(0.0, 1e30));
+  auto* rel = cmd->add_option("--rel", f->threshold.relative, "R: relative tolerance (0)")
+                  ->check(CLI::Range(0.0, 1e30));
+  auto* floor = cmd->add_option("--floor", f->threshold.floor,
+                                "F: the relative error's floor in units of RMS(g) (0; with "
+                                "--suggest: 1)")
+                    ->check(CLI::Range(0.0, 1e30));
+  auto* ulp = cmd->add_option("--ulp", f->threshold.ulp, "U: values within U float32 ULPs pass (0)")
+                  ->check(CLI::Range(0LL, 4294967296LL));
+  auto* share = cmd->add_option("--max-fail-share", f->threshold.allowed_share,
+                                "S: allowed share of failing values per channel, in [0, 1] (0)")
+                    ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--profile", f->profile,
+                  "FILE: per-channel thresholds (reference/profiles/*.json) instead of "
+                  "--abs/--rel/--floor/--ulp/--max-fail-share")
+      ->excludes(abs)
+      ->excludes(rel)
+      ->excludes(floor)
+      ->excludes(ulp)
+      ->excludes(share);
+  cmd->add_option("--channels", f->channels,
+                  "NAME,NAME,... or CANDIDATE=GOLDEN,...: compare just these (names or aliases: "
+                  "R/r/red/rgba.R, G, B, A, Y/luminance); default: every candidate channel but "
+                  "alpha, matched by name or alias");
+  cmd->add_flag("--alpha", f->alpha, "also compare alpha channels (ignored by default)");
+  cmd->add_option("--json", f->json,
+                  "FILE: the full result as JSON (percentiles, histogram, worst)");
+  cmd->add_option("--format", f->format, "stdout: text (a table) or json")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
+  cmd->add_option("--report", f->report,
+                  "DIR: index.html (self-contained: heat maps, fail masks, worst-pixel crops, "
+                  "golden/candidate flip) and diff.exr");
+  cmd->add_flag("--suggest", f->suggest,
+                "derive per-channel thresholds from candidate runs: R = safety * the largest e "
+                "over the runs, channels grouped by name with digits as '*'; prints the profile "
+                "JSON (or writes -o)");
+  cmd->add_option("--list", f->list,
+                  "FILE (--suggest): one run per line, CANDIDATE or GOLDEN CANDIDATE");
+  cmd->add_option("--safety", f->safety, "--suggest: safety factor (4)")
+      ->check(CLI::Range(1.0, 1e6));
+  cmd->add_option("-o,--output", f->output, "--suggest: write the profile JSON to FILE");
+  cmd->add_option("--name", f->name, "--suggest: the profile's name");
+  return [f, floor](std::ostream& out) {
+    ChannelSelection selection;
+    if (!f->channels.empty()) {
+      try {
+        selection = parse_channel_selection(f->channels);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError("--channels", e.what());
+      }
     }
+    selection.include_alpha = f->alpha;
+    if (f->suggest) {
+      if (!f->report.empty() || !f->profile.empty() || !f->json.empty()) {
+        throw UsageError("--suggest", "cannot be combined with --report, --profile or --json");
+      }
+      std::vector<std::pair<std::string, std::string>> runs;
+      const std::string golden = f->files.empty() ? std::string() : f->files[0];
+      for (std::size_t i = 1; i < f->files.size(); ++i) runs.emplace_back(golden, f->files[i]);
+      if (!f->list.empty()) {
+        const auto listed = read_run_list(f->list, golden);
+        runs.insert(runs.end(), listed.begin(), listed.end());
+      }
+      if (runs.empty()) {
+        throw UsageError("--suggest", "needs GOLDEN CANDIDATE... or --list FILE");
+      }
+      const double floor_value = floor->count() > 0 ? f->threshold.floor : 1.0;
+      ChannelThreshold measure;
+      measure.floor = floor_value;
+      std::vector<Comparison> comparisons;
+      std::string derivation =
+          "oceanref compare --suggest over " + std::to_string(runs.size()) + " run(s):";
+      if (runs.size() > 4) derivation += " listed in " + f->list;
+      for (const auto& [g, c] : runs) {
+        try {
+          comparisons.push_back(compare_parts(read_parts("GOLDEN", g), read_parts("CANDIDATE", c),
+                                              selection, uniform_profile(measure)));
+        } catch (const std::invalid_argument& e) {
+          throw UsageError("compare", e.what());
+        }
+        if (runs.size() <= 4) derivation += " " + std::filesystem::path(c).filename().string();
+      }
+      std::vector<SuggestedRule> rules;
+      try {
+        rules = suggest_thresholds(comparisons, f->safety, floor_value);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError("--suggest", e.what());
+      }
+      const std::string text = suggested_profile_json(
+          rules, f->name.empty() ? "suggested" : f->name, derivation, f->safety, floor_value);
+      if (f->output.empty()) {
+        out << text;
+      } else {
+        write_text_file("--output", f->output, text);
+        out << "wrote " << f->output << " (" << rules.size() << " channel rules from "
+            << runs.size() << " runs)\n";
+      }
+      return;
+    }
+    if (f->files.size() != 2) {
+      throw UsageError("compare", "expected GOLDEN.exr CANDIDATE.exr, got " +
+                                      std::to_string(f->files.size()) + " file(s)");
+    }
+    if (!f->list.empty() || !f->output.empty()) {
+      throw UsageError("--list", "--list and --output belong to --suggest");
+    }
+    ThresholdProfile profile = uniform_profile(f->threshold);
+    if (!f->profile.empty()) {
+      try {
+        profile = read_profile(f->profile);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError("--profile", e.what());
+      }
+    }
+    const std::vector<ExrPart> golden = read_parts("GOLDEN", f->files[0]);
+    const std::vector<ExrPart> candidate = read_parts("CANDIDATE", f->files[1]);
     Comparison c;
     try {
-      c = compare_images(golden, candidate, {f->absolute, f->relative, f->ulp, f->share});
+      c = compare_parts(golden, candidate, selection, profile);
     } catch (const std::invalid_argument& e) {
       throw UsageError("compare", e.what());
     }
-    write_metrics(out, c);
-    if (!f->report.empty()) write_report(f->report, f->a, f->b, golden, candidate, c);
+    const std::string json = comparison_json(c, f->files[0], f->files[1]);
+    if (!f->json.empty()) write_text_file("--json", f->json, json);
+    out << (f->format == "json" ? json : comparison_text(c));
+    if (!f->report.empty()) {
+      write_report(f->report, f->files[0], f->files[1], golden, candidate, c);
+    }
     if (!c.pass) throw CheckFailed{};
   };
 }
@@ -191,7 +357,9 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
         }
         out << '\n';
         try {
-          write_metrics(out, compare_images(read_exr(image_path.string()), r.exr, {}));
+          out << comparison_text(compare_parts({ExrPart{"", 0, 0, read_exr(image_path.string())}},
+                                               {ExrPart{"", 0, 0, r.exr}}, {},
+                                               uniform_profile({})));
         } catch (const std::exception& e) {
           out << "# cannot compare with " << image_path.string() << ": " << e.what() << '\n';
         }

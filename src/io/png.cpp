@@ -24,8 +24,12 @@ void chunk(std::vector<std::uint8_t>& out, const char* type,
 }
 }  // namespace
 
-void write_png(const std::string& path, int width, int height,
-               const std::vector<std::uint8_t>& rgb) {
+std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<std::uint8_t>& rgb) {
+  if (width < 1 || height < 1 ||
+      rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3) {
+    throw std::invalid_argument("PNG: " + std::to_string(rgb.size()) + " bytes for a " +
+                                std::to_string(width) + "x" + std::to_string(height) + " image");
+  }
   // Raw scanlines, each with filter type 0.
   std::vector<std::uint8_t> raw;
   const auto row = static_cast<std::size_t>(width) * 3;
@@ -37,7 +41,7 @@ void write_png(const std::string& path, int width, int height,
   uLongf size = compressBound(static_cast<uLong>(raw.size()));
   std::vector<std::uint8_t> compressed(size);
   if (compress2(compressed.data(), &size, raw.data(), static_cast<uLong>(raw.size()), 9) != Z_OK) {
-    throw std::runtime_error(path + ": PNG compression failed");
+    throw std::runtime_error("PNG compression failed");
   }
   compressed.resize(size);
   std::vector<std::uint8_t> out{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -49,6 +53,12 @@ void write_png(const std::string& path, int width, int height,
   chunk(out, "IHDR", header);
   chunk(out, "IDAT", compressed);
   chunk(out, "IEND", {});
+  return out;
+}
+
+void write_png(const std::string& path, int width, int height,
+               const std::vector<std::uint8_t>& rgb) {
+  const std::vector<std::uint8_t> out = encode_png(width, height, rgb);
   const std::filesystem::path target(path);
   const std::filesystem::path temporary =
       target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
