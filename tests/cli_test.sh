@@ -205,10 +205,10 @@ expect 2 'camera: camera: look_at equals position' render "$tmp/bad.json" -o "$t
 [ ! -e "$tmp/x.exr" ] || fail "a failed render left an output file"
 
 # --- compare ------------------------------------------------------------------------------------
-expect 0 '^result: pass' compare "$tmp/r1.exr" "$tmp/r2.exr"
+expect 0 '^result: pass' compare "$tmp/r2.exr" "$tmp/r1.exr"
 "$bin" render "$tmp/render.json" -o "$tmp/r_spp1.exr" --spp 1 >/dev/null
 checks=$((checks + 1))
-"$bin" compare "$tmp/r1.exr" "$tmp/r_spp1.exr" --report "$tmp/report" --json "$tmp/c.json" \
+"$bin" compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --report "$tmp/report" --json "$tmp/c.json" \
   >"$tmp/out" 2>"$tmp/err"
 [ $? -eq 1 ] || fail "compare of different images did not exit 1"
 grep -q '^result: fail' "$tmp/out" || fail "compare did not report the failure"
@@ -218,46 +218,46 @@ for file in index.html diff.exr; do
 done
 grep -q '"result": "fail"' "$tmp/c.json" || fail "compare --json has no result"
 grep -q '"rel_percentiles"' "$tmp/c.json" || fail "compare --json has no percentiles"
-expect 0 '"result": "pass"' compare "$tmp/r1.exr" "$tmp/r_spp1.exr" --abs 1e30 --format json
-expect 0 '^result: pass' compare "$tmp/r1.exr" "$tmp/r_spp1.exr" --rel 1e30 --floor 1
-expect 0 '^result: pass' compare "$tmp/r1.exr" "$tmp/r_spp1.exr" --max-fail-share 1
+expect 0 '"result": "pass"' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --abs 1e30 --format json
+expect 0 '^result: pass' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --rel 1e30 --floor 1
+expect 0 '^result: pass' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --max-fail-share 1
 # A channel subset by name and alias; a mapped channel; errors naming the channels.
 checks=$((checks + 1))
-"$bin" compare "$tmp/r1.exr" "$tmp/r_spp1.exr" --channels r,G >"$tmp/out" 2>&1
+"$bin" compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --channels r,G >"$tmp/out" 2>&1
 [ $? -eq 1 ] || fail "compare --channels r,G of different images did not exit 1"
 grep -q "not compared (golden only): 'B'" "$tmp/out" ||
   fail "compare --channels r,G did not list B as not compared: $(cat "$tmp/out")"
 expect 0 '^result: pass' compare "$tmp/r1.exr" "$tmp/r1.exr" --channels R=G,G=R,B --rel 1e30 --floor 1
-expect 2 "no channel 'Q'" compare "$tmp/r1.exr" "$tmp/r2.exr" --channels Q
-expect 2 "--channels" compare "$tmp/r1.exr" "$tmp/r2.exr" --channels R,,B
-expect 2 'differ in size' compare "$tmp/r1.exr" "$tmp/sky.exr"
-expect 2 'cannot read' compare "$tmp/r1.exr" "$tmp/missing.exr"
-expect 2 'expected GOLDEN.exr CANDIDATE.exr' compare "$tmp/r1.exr"
-expect 2 'excludes' compare "$tmp/r1.exr" "$tmp/r2.exr" --profile x.json --rel 1
-expect 2 '--profile.*cannot read' compare "$tmp/r1.exr" "$tmp/r2.exr" --profile "$tmp/none.json"
+expect 2 "no channel 'Q'" compare "$tmp/r2.exr" "$tmp/r1.exr" --channels Q
+expect 2 "--channels" compare "$tmp/r2.exr" "$tmp/r1.exr" --channels R,,B
+expect 2 'differ in size' compare "$tmp/sky.exr" "$tmp/r1.exr"
+expect 2 'cannot read' compare "$tmp/missing.exr" "$tmp/r1.exr"
+expect 2 'expected CANDIDATE.exr GOLDEN.exr' compare "$tmp/r1.exr"
+expect 2 'excludes' compare "$tmp/r2.exr" "$tmp/r1.exr" --profile x.json --rel 1
+expect 2 '--profile.*cannot read' compare "$tmp/r2.exr" "$tmp/r1.exr" --profile "$tmp/none.json"
 printf '{"default": {"rel": 1e-3}, "bogus": 1}' >"$tmp/bad_profile.json"
-expect 2 "--profile.*unknown key 'bogus'" compare "$tmp/r1.exr" "$tmp/r2.exr" \
+expect 2 "--profile.*unknown key 'bogus'" compare "$tmp/r2.exr" "$tmp/r1.exr" \
   --profile "$tmp/bad_profile.json"
 # The float32 example backend against the shipped profile: pass; with a bug: fail (exit 1).
 root=$(cd "$(dirname "$0")/.." && pwd)
 profile=$root/reference/profiles/fields_float32.json
 expect 0 '^wrote .*f32\.c0\.exr' bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 \
   -o "$tmp/f32.exr" --golden "$tmp/gold.exr"
-expect 0 '^result: pass' compare "$tmp/gold.c0.exr" "$tmp/f32.c0.exr" --profile "$profile"
+expect 0 '^result: pass' compare "$tmp/f32.c0.exr" "$tmp/gold.c0.exr" --profile "$profile"
 "$bin" bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 -o "$tmp/bad.exr" \
   --defect drop-conjugate-term >/dev/null
 checks=$((checks + 1))
-"$bin" compare "$tmp/gold.c0.exr" "$tmp/bad.c0.exr" --profile "$profile" >"$tmp/out" 2>&1
+"$bin" compare "$tmp/bad.c0.exr" "$tmp/gold.c0.exr" --profile "$profile" >"$tmp/out" 2>&1
 [ $? -eq 1 ] || fail "compare of the broken float32 backend did not exit 1"
 grep -q '^result: fail' "$tmp/out" || fail "the broken float32 backend passed the profile"
 # The profile has no default: a channel it does not cover is refused.
-expect 2 "no threshold for channel 'B'" compare "$tmp/r1.exr" "$tmp/r2.exr" --profile "$profile"
+expect 2 "no threshold for channel 'B'" compare "$tmp/r2.exr" "$tmp/r1.exr" --profile "$profile"
 # --suggest: from two runs, rules for every field kind; the written profile accepts the runs.
 expect 0 '^wrote .*suggested.json \(8 channel rules from 2 runs\)' compare --suggest \
-  "$tmp/gold.c0.exr" "$tmp/f32.c0.exr" "$tmp/f32.c0.exr" -o "$tmp/suggested.json"
+  "$tmp/f32.c0.exr" "$tmp/f32.c0.exr" "$tmp/gold.c0.exr" -o "$tmp/suggested.json"
 grep -q '"match": "c\*.slope_x"' "$tmp/suggested.json" || fail "--suggest: no c*.slope_x rule"
-expect 0 '^result: pass' compare "$tmp/gold.c0.exr" "$tmp/f32.c0.exr" --profile "$tmp/suggested.json"
-printf '# runs\ngold.c0.exr f32.c0.exr\n' >"$tmp/runs.txt"
+expect 0 '^result: pass' compare "$tmp/f32.c0.exr" "$tmp/gold.c0.exr" --profile "$tmp/suggested.json"
+printf '# runs\nf32.c0.exr gold.c0.exr\n' >"$tmp/runs.txt"
 expect 0 '"match": "c\*.ddx_dz"' compare --suggest --list "$tmp/runs.txt"
 expect 2 '--suggest.*non-finite|--suggest' compare --suggest "$tmp/gold.c0.exr"
 expect 2 '--yes' golden update --root reference

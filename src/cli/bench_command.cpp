@@ -674,7 +674,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       "The float32 example backend (src/conformance/float32_backend.h): every raw wave field of "
       "every cascade computed in float32 (float phases and products, FFTW float), written as a "
       "candidate EXR; --golden writes oceanref's double fields rounded to float32 in the same "
-      "layout. Then: oceanref compare GOLDEN CANDIDATE --profile "
+      "layout. Then: oceanref compare CANDIDATE GOLDEN --profile "
       "reference/profiles/fields_float32.json. One EXR per part: OUT.<part>.exr (parts c<i> on "
       "N_h and, with multi-resolution, c<i>.low on N_l).");
   float32->add_option("SCENE", float32_flags->scene, "scene file")->required();

@@ -62,7 +62,7 @@ std::vector<ExrPart> read_parts(const std::string& flag, const std::string& path
 }
 
 // The list file of --suggest: one run per line, "CANDIDATE" (against GOLDEN) or
-// "GOLDEN CANDIDATE"; blank lines and lines starting with '#' are skipped. Relative paths are
+// "CANDIDATE GOLDEN"; blank lines and lines starting with '#' are skipped. Relative paths are
 // relative to the list file's folder.
 std::vector<std::pair<std::string, std::string>> read_run_list(const std::string& path,
                                                                const std::string& golden) {
@@ -88,10 +88,10 @@ std::vector<std::pair<std::string, std::string>> read_run_list(const std::string
       }
       runs.emplace_back(golden, resolve(w[0]));
     } else if (w.size() == 2) {
-      runs.emplace_back(resolve(w[0]), resolve(w[1]));
+      runs.emplace_back(resolve(w[1]), resolve(w[0]));
     } else {
       throw UsageError("--list", path + ":" + std::to_string(number) +
-                                     ": expected CANDIDATE or GOLDEN CANDIDATE");
+                                     ": expected CANDIDATE or CANDIDATE GOLDEN");
     }
   }
   if (runs.empty()) throw UsageError("--list", path + ": no run listed");
@@ -118,9 +118,10 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       "percentiles p50/p90/p99/p99.9/max of e, the largest |c-g|, RMS(g), the largest ULP "
       "distance, the failing share and the worst pixel. Exit 0 pass, 1 fail, 2 bad input. "
       "With --suggest: derive per-channel thresholds from several candidate runs.");
-  cmd->add_option("FILES", f->files,
-                  "GOLDEN.exr CANDIDATE.exr (with --suggest: GOLDEN CANDIDATE... or GOLDEN "
-                  "--list FILE or --list FILE)")
+  cmd->add_option(
+         "FILES", f->files,
+         "CANDIDATE.exr GOLDEN.exr, the golden last (with --suggest: CANDIDATE... GOLDEN or GOLDEN "
+         "--list FILE or --list FILE)")
       ->expected(0, -1);
   auto* abs = cmd->add_option("--abs", f->threshold.absolute, "A: absolute tolerance (0)")
                   ->check(CLI::Range(0.0, 1e30));
@@ -161,7 +162,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
                 "over the runs, channels grouped by name with digits as '*'; prints the profile "
                 "JSON (or writes -o)");
   cmd->add_option("--list", f->list,
-                  "FILE (--suggest): one run per line, CANDIDATE or GOLDEN CANDIDATE");
+                  "FILE (--suggest): one run per line, CANDIDATE or CANDIDATE GOLDEN");
   cmd->add_option("--safety", f->safety, "--suggest: safety factor (4)")
       ->check(CLI::Range(1.0, 1e6));
   cmd->add_option("-o,--output", f->output, "--suggest: write the profile JSON to FILE");
@@ -181,14 +182,15 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
         throw UsageError("--suggest", "cannot be combined with --report, --profile or --json");
       }
       std::vector<std::pair<std::string, std::string>> runs;
-      const std::string golden = f->files.empty() ? std::string() : f->files[0];
-      for (std::size_t i = 1; i < f->files.size(); ++i) runs.emplace_back(golden, f->files[i]);
+      // The golden is the last file, as in compare CANDIDATE GOLDEN.
+      const std::string golden = f->files.empty() ? std::string() : f->files.back();
+      for (std::size_t i = 0; i + 1 < f->files.size(); ++i) runs.emplace_back(golden, f->files[i]);
       if (!f->list.empty()) {
         const auto listed = read_run_list(f->list, golden);
         runs.insert(runs.end(), listed.begin(), listed.end());
       }
       if (runs.empty()) {
-        throw UsageError("--suggest", "needs GOLDEN CANDIDATE... or --list FILE");
+        throw UsageError("--suggest", "needs CANDIDATE... GOLDEN or --list FILE");
       }
       const double floor_value = floor->count() > 0 ? f->threshold.floor : 1.0;
       ChannelThreshold measure;
@@ -224,7 +226,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       return;
     }
     if (f->files.size() != 2) {
-      throw UsageError("compare", "expected GOLDEN.exr CANDIDATE.exr, got " +
+      throw UsageError("compare", "expected CANDIDATE.exr GOLDEN.exr, got " +
                                       std::to_string(f->files.size()) + " file(s)");
     }
     if (!f->list.empty() || !f->output.empty()) {
@@ -238,19 +240,19 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
         throw UsageError("--profile", e.what());
       }
     }
-    const std::vector<ExrPart> golden = read_parts("GOLDEN", f->files[0]);
-    const std::vector<ExrPart> candidate = read_parts("CANDIDATE", f->files[1]);
+    const std::vector<ExrPart> candidate = read_parts("CANDIDATE", f->files[0]);
+    const std::vector<ExrPart> golden = read_parts("GOLDEN", f->files[1]);
     Comparison c;
     try {
       c = compare_parts(golden, candidate, selection, profile);
     } catch (const std::invalid_argument& e) {
       throw UsageError("compare", e.what());
     }
-    const std::string json = comparison_json(c, f->files[0], f->files[1]);
+    const std::string json = comparison_json(c, f->files[1], f->files[0]);
     if (!f->json.empty()) write_text_file("--json", f->json, json);
     out << (f->format == "json" ? json : comparison_text(c));
     if (!f->report.empty()) {
-      write_report(f->report, f->files[0], f->files[1], golden, candidate, c);
+      write_report(f->report, f->files[1], f->files[0], golden, candidate, c);
     }
     if (!c.pass) throw CheckFailed{};
   };
