@@ -22,6 +22,7 @@
 #include <string>
 
 #include "io/exr.h"
+#include "io/exr_camera.h"
 
 using namespace oceanref;
 
@@ -304,4 +305,38 @@ TEST_CASE("read_exr_parts: clear errors for a missing file, a non-EXR file and d
   }
   const std::string e3 = error_of([&] { read_exr_parts(deep); });
   CHECK(e3.find("part 0: deep data (deepscanline) is not supported") != std::string::npos);
+}
+
+TEST_CASE("worldToCamera and worldToNDC reproduce the camera's projection") {
+  const Camera camera = make_camera({3.0, 6.0, -2.0}, {10.0, 1.0, 90.0}, {0.0, 1.0, 0.0},
+                                    50.0 * 3.141592653589793 / 180.0, 640, 360);
+  const ExrMatrix view = world_to_camera_matrix(camera);
+  const ExrMatrix ndc = world_to_ndc_matrix(camera);
+  const auto times = [](const ExrMatrix& m, const glm::dvec3& p) {
+    std::array<double, 4> out{};
+    for (std::size_t c = 0; c < 4; ++c) {
+      const auto e = [&](std::size_t r) { return static_cast<double>(m[r][c]); };
+      out[c] = p.x * e(0) + p.y * e(1) + p.z * e(2) + e(3);
+    }
+    return out;
+  };
+  int checked = 0;
+  for (const glm::dvec3 p : {glm::dvec3{10.0, 1.0, 90.0}, glm::dvec3{-20.0, 0.0, 40.0},
+                             glm::dvec3{35.0, -3.0, 200.0}, glm::dvec3{0.0, 12.0, 15.0}}) {
+    const glm::dvec3 pixel = project(camera, p);  // x, y [pixels], depth z [m]
+    const std::array<double, 4> c = times(view, p);
+    // Camera space: +z forward (the depth), +x right, +y up (left-handed, RenderMan).
+    CHECK(c[2] == doctest::Approx(pixel.z).epsilon(1e-6));
+    const std::array<double, 4> h = times(ndc, p);
+    // float32 matrices: the error is a few float ulps of the entries times |p| (< 1e-3 px here).
+    CHECK(h[0] / h[3] * 640.0 == doctest::Approx(pixel.x).epsilon(2e-6).scale(640.0));
+    CHECK(h[1] / h[3] * 360.0 == doctest::Approx(pixel.y).epsilon(2e-6).scale(360.0));
+    CHECK(std::fabs(c[0]) + std::fabs(c[1]) > 0.0);
+    ++checked;
+  }
+  CHECK(checked == 4);
+  // The look-at point projects to the image centre.
+  const std::array<double, 4> centre = times(ndc, {10.0, 1.0, 90.0});
+  CHECK(centre[0] / centre[3] == doctest::Approx(0.5).epsilon(1e-6));
+  CHECK(centre[1] / centre[3] == doctest::Approx(0.5).epsilon(1e-6));
 }
