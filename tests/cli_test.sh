@@ -46,6 +46,23 @@ for flag in --model --wind-speed --fetch --depth --spreading --swell --spread-bl
   grep -q -- "$flag" "$tmp/out" || fail "spectrum --help does not list $flag"
 done
 
+# --- --version names the commit the binary was built from ----------------------------------
+# In a git tree: `git rev-parse --short HEAD`, with -dirty exactly when tracked files differ from
+# it (the binary must have been built from the tree as it is now).
+expect 0 '^oceanref [0-9]+[.][0-9]+[.][0-9]+ [(]commit [0-9a-f]+(-dirty)?[)]$' --version
+source_dir=$(cd "$(dirname "$0")/.." && pwd)
+if head=$(git -C "$source_dir" rev-parse --short HEAD 2>/dev/null); then
+  git -C "$source_dir" diff --quiet HEAD -- || head="$head-dirty"
+  checks=$((checks + 1))
+  built=$("$bin" --version | sed -n '1s/.*(commit \(.*\))$/\1/p')
+  [ "$built" = "$head" ] || fail "oceanref --version says commit '$built', the tree is at '$head'"
+fi
+
+# --- fields --stage ----------------------------------------------------------------------------
+expect 2 '--stage: .*spectrum' fields "$source_dir/reference/scenes/golden/mastin_spread_direct_tiny.json" --stage bogus -o "$tmp/x.exr"
+expect 2 '--stage: needs -o' fields "$source_dir/reference/scenes/golden/mastin_spread_direct_tiny.json" --stage h0 --at 0,0
+[ -e "$tmp/x.exr" ] && fail "fields --stage bogus wrote a file"
+
 # --- outputs: headers, row counts, 17 significant digits ------------------------------------
 expect 0 '^omega,S$' spectrum --model pierson-moskowitz --omega 0.5,0.8766,2
 [ "$(wc -l <"$tmp/out")" -eq 4 ] || fail "--omega with 3 values did not print 3 rows"

@@ -12,7 +12,8 @@ set -euo pipefail
 build_dir=${1:-build}
 packages=(build-essential cmake ninja-build clang clang-format dpkg-dev
           libglm-dev libopenexr-dev libtinyobjloader-dev doctest-dev
-          nlohmann-json3-dev libcli11-dev libfftw3-dev pkg-config zlib1g-dev libmpfr-dev)
+          nlohmann-json3-dev libcli11-dev libfftw3-dev pkg-config zlib1g-dev libmpfr-dev
+          openimageio-tools openexr python3-jsonschema)
 
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 
