@@ -111,6 +111,15 @@ readable "$tmp/omega.exr" 8 "${stage_common[@]}" 'channel list: c1.k, c1.kx, c1.
 readable "$tmp/hkt.exr" 8 "${stage_common[@]}" 'channel list: c3.low.hkt.im, c3.low.hkt.re$'
 readable "$tmp/fields.exr" 9 'oceanref.time_s: "2.5"' 'oceanref.stage: "fields"'
 
+# The worked example of docs/BACKENDS.md: one wave component reproduced by hand from the stages.
+mkdir -p "$tmp/example"
+for stage in spectrum h0 omega hkt fields; do
+  run fields "$src/reference/scenes/backend_example.json" --stage "$stage" -o "$tmp/example/$stage.exr"
+done
+checks=$((checks + 1))
+python3 "$src/docs/backend_example.py" "$tmp/example" >"$tmp/example.out" 2>&1 ||
+  fail "docs/backend_example.py: $(cat "$tmp/example.out")"
+
 # 4. The sky hemisphere.
 run sky --sun-zenith-deg 60 --size 16 -o "$tmp/sky.exr"
 readable "$tmp/sky.exr" 1 'channel list: R, G, B'
