@@ -46,6 +46,23 @@ for flag in --model --wind-speed --fetch --depth --spreading --swell --spread-bl
   grep -q -- "$flag" "$tmp/out" || fail "spectrum --help does not list $flag"
 done
 
+# --- --version names the commit the binary was built from ----------------------------------
+# In a git tree: `git rev-parse --short HEAD`, with -dirty exactly when tracked files differ from
+# it (the binary must have been built from the tree as it is now).
+expect 0 '^oceanref [0-9]+[.][0-9]+[.][0-9]+ [(]commit [0-9a-f]+(-dirty)?[)]$' --version
+source_dir=$(cd "$(dirname "$0")/.." && pwd)
+if head=$(git -C "$source_dir" rev-parse --short HEAD 2>/dev/null); then
+  git -C "$source_dir" diff --quiet HEAD -- || head="$head-dirty"
+  checks=$((checks + 1))
+  built=$("$bin" --version | sed -n '1s/.*(commit \(.*\))$/\1/p')
+  [ "$built" = "$head" ] || fail "oceanref --version says commit '$built', the tree is at '$head'"
+fi
+
+# --- fields --stage ----------------------------------------------------------------------------
+expect 2 '--stage: .*spectrum' fields "$source_dir/reference/scenes/golden/mastin_spread_direct_tiny.json" --stage bogus -o "$tmp/x.exr"
+expect 2 '--stage: needs -o' fields "$source_dir/reference/scenes/golden/mastin_spread_direct_tiny.json" --stage h0 --at 0,0
+[ -e "$tmp/x.exr" ] && fail "fields --stage bogus wrote a file"
+
 # --- outputs: headers, row counts, 17 significant digits ------------------------------------
 expect 0 '^omega,S$' spectrum --model pierson-moskowitz --omega 0.5,0.8766,2
 [ "$(wc -l <"$tmp/out")" -eq 4 ] || fail "--omega with 3 values did not print 3 rows"
@@ -241,25 +258,25 @@ expect 2 "--profile.*unknown key 'bogus'" compare "$tmp/r2.exr" "$tmp/r1.exr" \
 # The float32 example backend against the shipped profile: pass; with a bug: fail (exit 1).
 root=$(cd "$(dirname "$0")/.." && pwd)
 profile=$root/reference/profiles/fields_float32.json
-expect 0 '^wrote .*f32\.c0\.exr' bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 \
+expect 0 '^wrote .*f32\.exr' bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 \
   -o "$tmp/f32.exr" --golden "$tmp/gold.exr"
-expect 0 '^result: pass' compare "$tmp/f32.c0.exr" "$tmp/gold.c0.exr" --profile "$profile"
+expect 0 '^result: pass' compare "$tmp/f32.exr" "$tmp/gold.exr" --profile "$profile"
 "$bin" bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 -o "$tmp/bad.exr" \
   --defect drop-conjugate-term >/dev/null
 checks=$((checks + 1))
-"$bin" compare "$tmp/bad.c0.exr" "$tmp/gold.c0.exr" --profile "$profile" >"$tmp/out" 2>&1
+"$bin" compare "$tmp/bad.exr" "$tmp/gold.exr" --profile "$profile" >"$tmp/out" 2>&1
 [ $? -eq 1 ] || fail "compare of the broken float32 backend did not exit 1"
 grep -q '^result: fail' "$tmp/out" || fail "the broken float32 backend passed the profile"
 # The profile has no default: a channel it does not cover is refused.
 expect 2 "no threshold for channel 'B'" compare "$tmp/r2.exr" "$tmp/r1.exr" --profile "$profile"
 # --suggest: from two runs, rules for every field kind; the written profile accepts the runs.
 expect 0 '^wrote .*suggested.json \(8 channel rules from 2 runs\)' compare --suggest \
-  "$tmp/f32.c0.exr" "$tmp/f32.c0.exr" "$tmp/gold.c0.exr" -o "$tmp/suggested.json"
+  "$tmp/f32.exr" "$tmp/f32.exr" "$tmp/gold.exr" -o "$tmp/suggested.json"
 grep -q '"match": "c\*.slope_x"' "$tmp/suggested.json" || fail "--suggest: no c*.slope_x rule"
-expect 0 '^result: pass' compare "$tmp/f32.c0.exr" "$tmp/gold.c0.exr" --profile "$tmp/suggested.json"
-printf '# runs\nf32.c0.exr gold.c0.exr\n' >"$tmp/runs.txt"
+expect 0 '^result: pass' compare "$tmp/f32.exr" "$tmp/gold.exr" --profile "$tmp/suggested.json"
+printf '# runs\nf32.exr gold.exr\n' >"$tmp/runs.txt"
 expect 0 '"match": "c\*.ddx_dz"' compare --suggest --list "$tmp/runs.txt"
-expect 2 '--suggest.*non-finite|--suggest' compare --suggest "$tmp/gold.c0.exr"
+expect 2 '--suggest.*non-finite|--suggest' compare --suggest "$tmp/gold.exr"
 expect 2 '--yes' golden update --root reference
 
 # --- bench lighting-map and lighting-pixels (tools/lighting_accuracy_map.sh) -------------------

@@ -675,7 +675,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       "every cascade computed in float32 (float phases and products, FFTW float), written as a "
       "candidate EXR; --golden writes oceanref's double fields rounded to float32 in the same "
       "layout. Then: oceanref compare CANDIDATE GOLDEN --profile "
-      "reference/profiles/fields_float32.json. One EXR per part: OUT.<part>.exr (parts c<i> on "
+      "reference/profiles/fields_float32.json. One multi-part EXR (parts c<i> on "
       "N_h and, with multi-resolution, c<i>.low on N_l).");
   float32->add_option("SCENE", float32_flags->scene, "scene file")->required();
   float32
@@ -712,19 +712,14 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
               ? Float32Defect::drop_conjugate_term
               : (g.defect == "half-float-phase" ? Float32Defect::half_float_phase
                                                 : Float32Defect::none);
-      const auto write_parts = [&](const std::string& path, const std::vector<ExrPart>& parts) {
-        // One file per part (OUT.<part>.exr) until io/exr writes multi-part files.
-        const std::string stem =
-            path.size() > 4 && path.ends_with(".exr") ? path.substr(0, path.size() - 4) : path;
-        for (std::size_t i = 0; i < parts.size(); ++i) {
-          ExrImage image = parts[i].image;
-          image.attributes["oceanref.part"] = parts[i].name;
-          image.attributes["oceanref.time_s"] = format_number(time);
-          image.attributes["oceanref.backend"] =
+      const auto write_parts = [&](const std::string& path, std::vector<ExrPart> parts) {
+        for (ExrPart& part : parts) {
+          part.image.attributes["oceanref.time_s"] = format_number(time);
+          part.image.attributes["oceanref.backend"] =
               std::string("float32 example backend, defect ") + g.defect;
-          write_exr(stem + "." + parts[i].name + ".exr", image);
-          out << "wrote " << stem << "." << parts[i].name << ".exr\n";
         }
+        write_exr_parts(path, parts);
+        out << "wrote " << path << " (" << parts.size() << " parts)\n";
       };
       write_parts(g.output, float32_fields_parts(ocean, time, defect));
       if (!g.golden.empty()) write_parts(g.golden, reference_fields_parts(ocean, time, g.threads));

@@ -22,21 +22,6 @@
 namespace oceanref::cli {
 
 namespace {
-// SHA-256 of every channel's float32 values (little-endian), channels in name order.
-std::string channels_hash(const ExrImage& image) {
-  std::vector<const ExrChannel*> sorted;
-  for (const ExrChannel& c : image.channels) sorted.push_back(&c);
-  std::sort(sorted.begin(), sorted.end(),
-            [](const ExrChannel* a, const ExrChannel* b) { return a->name < b->name; });
-  std::vector<std::uint8_t> bytes;
-  for (const ExrChannel* c : sorted) {
-    bytes.insert(bytes.end(), c->name.begin(), c->name.end());
-    bytes.push_back(0);
-    for (const float v : c->values) append_bytes(bytes, v);
-  }
-  return sha256_hex(bytes);
-}
-
 // Writes `text` to `path` atomically (temporary name, then rename).
 void write_text_file(const std::string& flag, const std::string& path, const std::string& text) {
   const std::filesystem::path target(path);
@@ -319,8 +304,7 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
       const Scene scene = load_scene(scene_path.string());
       const Ocean ocean = realize_ocean(scene.waves, threads);
       const FieldsImage fields_output = fields_image(scene, ocean, threads);
-      const ExrImage& fields = fields_output.exr;
-      const std::string fields_hash = channels_hash(fields);
+      const std::string& fields_hash = fields_output.sha256;
       const std::filesystem::path image_path = root / "golden" / (name + ".exr");
       const std::filesystem::path fields_path = root / "golden" / (name + ".fields.exr");
       // Identity on the float32 outputs and on the double buffers behind them.
@@ -330,7 +314,7 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
                         entry.value("fields_f64_sha256", "") == fields_output.f64_sha256;
       if (update->parsed()) {
         write_exr(image_path.string(), r.exr);
-        write_exr(fields_path.string(), fields);
+        write_exr_parts(fields_path.string(), fields_output.parts);
         entry["pixel_sha256"] = r.pixel_sha256;
         entry["fields_sha256"] = fields_hash;
         entry["radiance_f64_sha256"] = r.radiance_f64_sha256;

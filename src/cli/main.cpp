@@ -1,47 +1,26 @@
 // oceanref: the command-line front end, a thin layer over the library.
 // Exit codes: 0 success, 1 failed check, 2 bad input (one line naming the flag and range).
 #include <CLI/CLI.hpp>
-#include <cfloat>
 #include <iostream>
 #include <sstream>
 
 #include "cli/bench_command.h"
 #include "cli/brdf_command.h"
-#include "cli/build_info.h"
 #include "cli/compare_command.h"
 #include "cli/fields_command.h"
+#include "cli/provenance.h"
 #include "cli/render_command.h"
 #include "cli/sky_command.h"
 #include "cli/spectrum_command.h"
 #include "cli/text.h"
 #include "core/fp_environment.h"
 
-namespace {
-// `oceanref --version`: what built this binary, and the arithmetic it promises.
-std::string version_text() {
-  std::ostringstream s;
-  s << "oceanref " << OCEANREF_VERSION << " (commit " << OCEANREF_COMMIT << ")\n"
-    << "compiler: "
-#if defined(__clang__)
-    << "clang "
-#else
-    << "gcc "
-#endif
-    << __VERSION__ << ", " << OCEANREF_BUILD_TYPE << ", " << OCEANREF_ARCH << "\n"
-    << "flags: " << OCEANREF_BUILD_FLAGS << "\n"
-    << "math: " << OCEANREF_MATH_LIBRARY << "\n"
-    << "floating point: IEEE-754 binary64, FLT_EVAL_METHOD " << FLT_EVAL_METHOD
-    << ", no contraction; round-to-nearest with FTZ and DAZ off enforced while computing";
-  return s.str();
-}
-}  // namespace
-
 int main(int argc, char** argv) {
   // Round to nearest with subnormals, whatever the process was started with (determinism contract).
   const oceanref::ReferenceFpEnvironment fp;
   CLI::App app{"oceanref: deterministic CPU reference renderer for spectral ocean surfaces",
                "oceanref"};
-  app.set_version_flag("--version", version_text());
+  app.set_version_flag("--version", oceanref::cli::version_text());
   app.require_subcommand(1);
   const auto run_spectrum = oceanref::cli::add_spectrum_command(app);
   const auto run_fields = oceanref::cli::add_fields_command(app);

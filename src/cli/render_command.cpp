@@ -10,8 +10,10 @@
 #include <ostream>
 #include <string>
 
+#include "cli/provenance.h"
 #include "cli/text.h"
 #include "io/exr.h"
+#include "io/exr_camera.h"
 #include "io/png.h"
 #include "io/sha256.h"
 #include "scene/scene.h"
@@ -20,8 +22,6 @@
 namespace oceanref::cli {
 
 namespace {
-constexpr const char* kVersion = "oceanref 0.1.0";
-
 struct Prepared {
   Scene scene;
   Ocean ocean;
@@ -149,7 +149,11 @@ RenderedScene render_scene(const std::string& path, int threads, int spp, bool a
                 : "fast, sky_order " + std::to_string(shading.sky_order) + ", sun_order " +
                       std::to_string(shading.sun_order);
   exr.srgb_chromaticities = true;
-  exr.attributes["oceanref.version"] = kVersion;
+  exr.attributes["oceanref.version"] = oceanref_version();
+  exr.attributes["oceanref.commit"] = oceanref_commit();
+  // The view, as the standard attributes (io/exr_camera.h; docs/FILES.md).
+  exr.matrices["worldToCamera"] = world_to_camera_matrix(p->job.camera);
+  exr.matrices["worldToNDC"] = world_to_ndc_matrix(p->job.camera);
   exr.attributes["oceanref.scene_sha256"] = sha256_hex(p->scene.canonical);
   exr.attributes["oceanref.seed"] = std::to_string(p->scene.seed);
   exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";

@@ -408,6 +408,12 @@ PartResult compare_part(const ExrPart& golden, const ExrPart& candidate,
                                 ", candidate " + std::to_string(c.width) + "x" +
                                 std::to_string(c.height));
   }
+  if (g.origin_x != c.origin_x || g.origin_y != c.origin_y) {
+    throw std::invalid_argument(part_label(golden) + ": the data windows differ: golden at (" +
+                                std::to_string(g.origin_x) + ", " + std::to_string(g.origin_y) +
+                                "), candidate at (" + std::to_string(c.origin_x) + ", " +
+                                std::to_string(c.origin_y) + ")");
+  }
   std::vector<std::pair<const ExrChannel*, const ExrChannel*>> pairs;  // (golden, candidate)
   if (selection.pairs.empty()) {
     std::vector<std::string> unmatched;
@@ -536,8 +542,7 @@ Comparison compare_parts(const std::vector<ExrPart>& golden, const std::vector<E
 }
 
 std::vector<ExrPart> read_parts_for_compare(const std::string& path) {
-  // TODO(merge): read_exr_parts(path) once io/exr.cpp reads every part and level.
-  return {ExrPart{"", 0, 0, read_exr(path)}};
+  return read_exr_parts(path);
 }
 
 std::string generalize_name(const std::string& name) {

@@ -143,8 +143,8 @@ Comparison compare_parts(const std::vector<ExrPart>& golden, const std::vector<E
 // A single uniform threshold for every channel.
 ThresholdProfile uniform_profile(const ChannelThreshold& threshold);
 
-// The parts and levels of an EXR file as compare reads them. Today the one part at level 0 that
-// read_exr reads (named ""); to become read_exr_parts (io/exr.h) — the only place to change.
+// The parts and levels of an EXR file as compare reads them: every part, every resolution level
+// (read_exr_parts, io/exr.h).
 std::vector<ExrPart> read_parts_for_compare(const std::string& path);
 
 // --suggest: per-channel thresholds from a set of candidate runs. Channels are grouped by their

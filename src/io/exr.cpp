@@ -5,55 +5,104 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfInputPart.h>
+#include <ImfMatrixAttribute.h>
+#include <ImfMultiPartInputFile.h>
+#include <ImfMultiPartOutputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfOutputPart.h>
+#include <ImfPartType.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
+#include <ImfTiledInputPart.h>
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
+#include <set>
 #include <stdexcept>
 
 namespace oceanref {
 
 namespace {
-// A slice for a subsampled channel: EXR addresses a sample (x, y) at
-// base + (x/xs)·xStride + (y/ys)·yStride, so the base is offset for the data window origin (0).
-Imf::Slice float_slice(float* data, int width, int sampling) {
-  const std::size_t row = static_cast<std::size_t>(width / sampling) * sizeof(float);
-  return Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data), sizeof(float), row, sampling,
-                    sampling);
+Imath::Box2i data_window(const ExrImage& image) {
+  return Imath::Box2i(
+      Imath::V2i(image.origin_x, image.origin_y),
+      Imath::V2i(image.origin_x + image.width - 1, image.origin_y + image.height - 1));
 }
-}  // namespace
 
-void write_exr(const std::string& path, const ExrImage& image) {
+// A float slice of a channel stored row-major at its own sampling: EXR addresses the sample of
+// pixel (x, y) at base + (x/s)·xStride + (y/s)·yStride, so Slice::Make offsets the base by the
+// data window's origin.
+Imf::Slice float_slice(const float* data, const Imath::Box2i& window, int sampling) {
+  const int width = window.max.x - window.min.x + 1;
+  const std::size_t row = static_cast<std::size_t>(width / sampling) * sizeof(float);
+  return Imf::Slice::Make(Imf::FLOAT, data, window, sizeof(float), row, sampling, sampling);
+}
+
+void check_size(const ExrImage& image, const std::string& what) {
+  if (image.width < 1 || image.height < 1) {
+    throw std::invalid_argument(what + ": size " + std::to_string(image.width) + "x" +
+                                std::to_string(image.height) + " is empty");
+  }
+  for (const ExrChannel& c : image.channels) {
+    if (c.sampling < 1 || image.width % c.sampling != 0 || image.height % c.sampling != 0) {
+      throw std::invalid_argument(what + ": channel " + c.name + " has sampling " +
+                                  std::to_string(c.sampling) + ", which does not divide the size");
+    }
+    const std::size_t expected = static_cast<std::size_t>(image.width / c.sampling) *
+                                 static_cast<std::size_t>(image.height / c.sampling);
+    if (c.values.size() != expected) {
+      throw std::invalid_argument(what + ": channel " + c.name + " has " +
+                                  std::to_string(c.values.size()) + " values, expected " +
+                                  std::to_string(expected));
+    }
+  }
+}
+
+// The header of one image: size, ZIP, string and matrix attributes, chromaticities, channels.
+Imf::Header make_header(const ExrImage& image) {
+  const Imath::Box2i window = data_window(image);
+  Imf::Header header(window, window, 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y,
+                     Imf::ZIP_COMPRESSION);
+  for (const auto& [key, value] : image.attributes) {
+    header.insert(key, Imf::StringAttribute(value));
+  }
+  for (const auto& [key, m] : image.matrices) {
+    header.insert(
+        key, Imf::M44fAttribute(Imath::M44f(m[0][0], m[0][1], m[0][2], m[0][3], m[1][0], m[1][1],
+                                            m[1][2], m[1][3], m[2][0], m[2][1], m[2][2], m[2][3],
+                                            m[3][0], m[3][1], m[3][2], m[3][3])));
+  }
+  if (image.srgb_chromaticities) {
+    // Rec. 709 / sRGB primaries and the D65 white (IEC 61966-2-1).
+    Imf::addChromaticities(
+        header, Imf::Chromaticities(Imath::V2f(0.64f, 0.33f), Imath::V2f(0.30f, 0.60f),
+                                    Imath::V2f(0.15f, 0.06f), Imath::V2f(0.3127f, 0.3290f)));
+  }
+  for (const ExrChannel& c : image.channels) {
+    header.channels().insert(c.name, Imf::Channel(Imf::FLOAT, c.sampling, c.sampling, false));
+  }
+  return header;
+}
+
+// The library's frame buffer wants mutable pointers; it only reads them when writing.
+Imf::FrameBuffer output_frame(const ExrImage& image) {
+  Imf::FrameBuffer frame;
+  for (const ExrChannel& c : image.channels) {
+    frame.insert(c.name, float_slice(c.values.data(), data_window(image), c.sampling));
+  }
+  return frame;
+}
+
+// Runs `write` on a temporary name in the target's folder, then renames it over the target;
+// on failure the temporary file is removed and the error names the target.
+void write_atomically(const std::string& path, const std::function<void(const char*)>& write) {
   const std::filesystem::path target(path);
   const std::filesystem::path temporary =
       target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
   try {
-    Imf::Header header(image.width, image.height, 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y,
-                       Imf::ZIP_COMPRESSION);
-    for (const auto& [key, value] : image.attributes) {
-      header.insert(key, Imf::StringAttribute(value));
-    }
-    if (image.srgb_chromaticities) {
-      // Rec. 709 / sRGB primaries and the D65 white (IEC 61966-2-1).
-      Imf::addChromaticities(
-          header, Imf::Chromaticities(Imath::V2f(0.64f, 0.33f), Imath::V2f(0.30f, 0.60f),
-                                      Imath::V2f(0.15f, 0.06f), Imath::V2f(0.3127f, 0.3290f)));
-    }
-    Imf::FrameBuffer frame;
-    std::vector<std::vector<float>> copies;  // the library wants mutable pointers
-    copies.reserve(image.channels.size());
-    for (const ExrChannel& c : image.channels) {
-      header.channels().insert(c.name, Imf::Channel(Imf::FLOAT, c.sampling, c.sampling, false));
-      copies.push_back(c.values);
-      frame.insert(c.name, float_slice(copies.back().data(), image.width, c.sampling));
-    }
-    {
-      Imf::OutputFile file(temporary.c_str(), header);
-      file.setFrameBuffer(frame);
-      file.writePixels(image.height);
-    }
+    write(temporary.c_str());
     std::filesystem::rename(temporary, target);
   } catch (const std::exception& e) {
     std::error_code ignored;
@@ -62,41 +111,194 @@ void write_exr(const std::string& path, const ExrImage& image) {
   }
 }
 
-ExrImage read_exr(const std::string& path) {
+// String and M44f attributes of a header, without the structural `name` and `type`.
+void read_attributes(const Imf::Header& header, ExrImage& image) {
+  for (auto a = header.begin(); a != header.end(); ++a) {
+    const std::string key = a.name();
+    if (key == "name" || key == "type") continue;
+    if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&a.attribute())) {
+      image.attributes[key] = s->value();
+    } else if (const auto* m = dynamic_cast<const Imf::M44fAttribute*>(&a.attribute())) {
+      ExrMatrix matrix{};
+      for (int r = 0; r < 4; ++r) {
+        for (int c = 0; c < 4; ++c) {
+          matrix[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] = m->value()[r][c];
+        }
+      }
+      image.matrices[key] = matrix;
+    }
+  }
+}
+
+// An image with the header's attributes and channels (zero-filled) for the given data window,
+// and the frame buffer that reads into it.
+ExrImage prepare_image(const Imf::Header& header, const Imath::Box2i& window, bool tiled,
+                       Imf::FrameBuffer& frame) {
+  ExrImage image;
+  image.width = window.max.x - window.min.x + 1;
+  image.height = window.max.y - window.min.y + 1;
+  image.origin_x = window.min.x;
+  image.origin_y = window.min.y;
+  if (image.width < 1 || image.height < 1) throw std::runtime_error("empty data window");
+  read_attributes(header, image);
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
+    const int sampling = c.channel().xSampling;
+    if (sampling < 1 || c.channel().ySampling != sampling || image.width % sampling != 0 ||
+        image.height % sampling != 0 || image.origin_x % sampling != 0 ||
+        image.origin_y % sampling != 0 || (tiled && sampling != 1)) {
+      throw std::runtime_error(std::string("channel ") + c.name() + " has sampling " +
+                               std::to_string(c.channel().xSampling) + "," +
+                               std::to_string(c.channel().ySampling) +
+                               " (supported: equal x and y sampling dividing the data window)");
+    }
+    image.channels.push_back(
+        {c.name(), sampling,
+         std::vector<float>(static_cast<std::size_t>(image.width / sampling) *
+                            static_cast<std::size_t>(image.height / sampling))});
+  }
+  for (ExrChannel& c : image.channels) {
+    frame.insert(c.name, float_slice(c.values.data(), window, c.sampling));
+  }
+  return image;
+}
+
+std::string part_label(const Imf::Header& header, int index) {
+  return "part " + std::to_string(index) + (header.hasName() ? " '" + header.name() + "'" : "");
+}
+
+void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& out) {
+  const Imf::Header& header = file.header(index);
+  const std::string name = header.hasName() ? header.name() : "";
   try {
-    Imf::InputFile file(path.c_str());
-    const Imath::Box2i window = file.header().dataWindow();
-    ExrImage image;
-    image.width = window.max.x - window.min.x + 1;
-    image.height = window.max.y - window.min.y + 1;
-    if (window.min.x != 0 || window.min.y != 0) {
-      throw std::runtime_error("data windows not starting at (0, 0) are not supported");
+    if (header.hasType() && Imf::isDeepData(header.type())) {
+      throw std::runtime_error("deep data (" + header.type() +
+                               ") is not supported: only flat images are read");
     }
-    for (auto a = file.header().begin(); a != file.header().end(); ++a) {
-      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&a.attribute())) {
-        image.attributes[a.name()] = s->value();
+    if (!header.hasTileDescription()) {
+      Imf::InputPart part(file, index);
+      Imf::FrameBuffer frame;
+      const Imath::Box2i window = header.dataWindow();
+      ExrPart p{name, 0, 0, prepare_image(header, window, false, frame)};
+      part.setFrameBuffer(frame);
+      part.readPixels(window.min.y, window.max.y);
+      out.push_back(std::move(p));
+      return;
+    }
+    Imf::TiledInputPart part(file, index);
+    // ONE_LEVEL: 1 × 1 levels; MIPMAP_LEVELS: (l, l); RIPMAP_LEVELS: every (lx, ly).
+    const bool ripmap = part.levelMode() == Imf::RIPMAP_LEVELS;
+    const int ny = ripmap ? part.numYLevels() : 1;
+    const int nx = part.numXLevels();
+    for (int ly = 0; ly < ny; ++ly) {
+      for (int lx = 0; lx < nx; ++lx) {
+        const int level_y = ripmap ? ly : lx;
+        Imf::FrameBuffer frame;
+        const Imath::Box2i window = part.dataWindowForLevel(lx, level_y);
+        ExrPart p{name, lx, level_y, prepare_image(header, window, true, frame)};
+        part.setFrameBuffer(frame);
+        part.readTiles(0, part.numXTiles(lx) - 1, 0, part.numYTiles(level_y) - 1, lx, level_y);
+        out.push_back(std::move(p));
       }
     }
-    Imf::FrameBuffer frame;
-    for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c) {
-      const int sampling = c.channel().xSampling;
-      if (sampling < 1 || c.channel().ySampling != sampling || image.width % sampling != 0 ||
-          image.height % sampling != 0) {
-        throw std::runtime_error(std::string("channel ") + c.name() + " has unsupported sampling");
-      }
-      image.channels.push_back(
-          {c.name(), sampling,
-           std::vector<float>(static_cast<std::size_t>(image.width / sampling) *
-                              static_cast<std::size_t>(image.height / sampling))});
-    }
-    for (ExrChannel& c : image.channels) {
-      frame.insert(c.name, float_slice(c.values.data(), image.width, c.sampling));
-    }
-    file.setFrameBuffer(frame);
-    file.readPixels(window.min.y, window.max.y);
-    return image;
   } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": cannot read the EXR file: " + e.what());
+    throw std::runtime_error(part_label(header, index) + ": " + e.what());
+  }
+}
+
+std::runtime_error read_error(const std::string& path, const std::string& what) {
+  return std::runtime_error(path + ": cannot read the EXR file: " + what);
+}
+
+void check_readable(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw read_error(path,
+                     std::filesystem::exists(path, error) ? "not a regular file" : "no such file");
+  }
+}
+}  // namespace
+
+void write_exr(const std::string& path, const ExrImage& image) {
+  check_size(image, path);
+  const Imf::Header header = make_header(image);
+  const Imf::FrameBuffer frame = output_frame(image);
+  write_atomically(path, [&](const char* temporary) {
+    Imf::OutputFile file(temporary, header);
+    file.setFrameBuffer(frame);
+    file.writePixels(image.height);
+  });
+}
+
+void write_exr_parts(const std::string& path, const std::vector<ExrPart>& parts) {
+  if (parts.empty()) throw std::invalid_argument(path + ": an EXR file needs at least one part");
+  std::vector<Imf::Header> headers;
+  std::set<std::string> names;
+  for (const ExrPart& p : parts) {
+    const std::string what = path + ": part '" + p.name + "'";
+    if (p.name.empty()) throw std::invalid_argument(path + ": every part needs a name");
+    if (!names.insert(p.name).second) {
+      throw std::invalid_argument(what + ": part names must be unique");
+    }
+    if (p.level_x != 0 || p.level_y != 0) {
+      throw std::invalid_argument(what + ": only level 0, 0 is written (scanline parts)");
+    }
+    check_size(p.image, what);
+    for (const ExrChannel& c : p.image.channels) {
+      if (c.sampling != 1) {
+        throw std::invalid_argument(what + ": channel " + c.name +
+                                    " is subsampled; multi-part files hold full-resolution "
+                                    "channels only (give each resolution its own part)");
+      }
+    }
+    for (const std::string reserved : {"name", "type"}) {
+      if (p.image.attributes.contains(reserved) || p.image.matrices.contains(reserved)) {
+        throw std::invalid_argument(what + ": attribute '" + reserved + "' is reserved");
+      }
+    }
+    headers.push_back(make_header(p.image));
+    headers.back().setName(p.name);
+    headers.back().setType(Imf::SCANLINEIMAGE);
+  }
+  // displayWindow is shared by all parts of a file (OpenEXR rejects differing ones): the bounding
+  // box of every part's data window.
+  Imath::Box2i display;
+  for (const Imf::Header& h : headers) display.extendBy(h.dataWindow());
+  for (Imf::Header& h : headers) h.displayWindow() = display;
+  write_atomically(path, [&](const char* temporary) {
+    Imf::MultiPartOutputFile file(temporary, headers.data(), static_cast<int>(headers.size()));
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      Imf::OutputPart part(file, static_cast<int>(i));
+      part.setFrameBuffer(output_frame(parts[i].image));
+      part.writePixels(parts[i].image.height);
+    }
+  });
+}
+
+ExrImage read_exr(const std::string& path) {
+  check_readable(path);
+  try {
+    Imf::MultiPartInputFile file(path.c_str());
+    if (file.parts() != 1) {
+      throw std::runtime_error("it has " + std::to_string(file.parts()) +
+                               " parts; read multi-part files with read_exr_parts");
+    }
+    std::vector<ExrPart> parts;
+    read_part(file, 0, parts);
+    return std::move(parts.front().image);  // level 0 of a tiled file
+  } catch (const std::exception& e) {
+    throw read_error(path, e.what());
+  }
+}
+
+std::vector<ExrPart> read_exr_parts(const std::string& path) {
+  check_readable(path);
+  try {
+    Imf::MultiPartInputFile file(path.c_str());
+    std::vector<ExrPart> parts;
+    for (int i = 0; i < file.parts(); ++i) read_part(file, i, parts);
+    return parts;
+  } catch (const std::exception& e) {
+    throw read_error(path, e.what());
   }
 }
 

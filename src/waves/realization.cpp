@@ -13,17 +13,22 @@ double wavenumber_spacing(double size) {
   return 2.0 * std::numbers::pi / size;
 }
 
-Complex initial_amplitude(const Spectrum& spectrum, std::uint64_t seed, const Pattern& p, int alpha,
-                          int beta) {
+double cell_variance(const Spectrum& spectrum, const Pattern& p, int alpha, int beta) {
   const double dk = wavenumber_spacing(p.size);
   const double kx = alpha * dk;
   const double kz = beta * dk;
   const double k = math::hypot(kx, kz);
   if (!(k > 0.0) || !p.band.contains(k)) return 0.0;
-  const double theta = wavevector_spectrum(spectrum, kx, kz);
-  if (theta == 0.0) return 0.0;
+  return wavevector_spectrum(spectrum, kx, kz) * dk * dk;
+}
+
+Complex initial_amplitude(const Spectrum& spectrum, std::uint64_t seed, const Pattern& p, int alpha,
+                          int beta) {
+  // 2·(ΘΔk·Δk) is the 2ΘΔkΔk of before, bit for bit: doubling is exact.
+  const double variance = cell_variance(spectrum, p, alpha, beta);
+  if (variance == 0.0) return 0.0;
   const NormalPair xi = standard_normal_pair(component_key(seed, p.cascade, alpha, beta));
-  const double scale = std::sqrt(2.0 * theta * dk * dk) / std::numbers::sqrt2;
+  const double scale = std::sqrt(2.0 * variance) / std::numbers::sqrt2;
   return {xi.real * scale, xi.imag * scale};
 }
 

@@ -51,6 +51,10 @@ inline bool is_nyquist(int alpha, int n) {
 // Δk = 2π/L [rad/m]
 double wavenumber_spacing(double size);
 
+// Θ(k)Δk_xΔk_z, the variance of the wave with integer wavevector (α, β): 0 at k = 0 and outside
+// the pattern's band (the entries where no h0 is drawn).
+double cell_variance(const Spectrum& spectrum, const Pattern& p, int alpha, int beta);
+
 // h0(k) = (ξ_r + iξ_i)/√2 · √(2Θ(k)Δk_xΔk_z)  (Gamper eq. 4.2), with (ξ_r, ξ_i) keyed by
 // (seed, cascade, α, β); 0 outside the pattern's band and at k = 0.
 Complex initial_amplitude(const Spectrum& spectrum, std::uint64_t seed, const Pattern& p, int alpha,

@@ -1,0 +1,150 @@
+#!/usr/bin/env bash
+# Every kind of file oceanref writes opens in common tools (issue 13): OpenImageIO's oiiotool
+# (`--info -v -a`, every subimage) and OpenEXR's exrheader, with the expected parts, channels and
+# header attributes. Both tools come from Debian (openimageio-tools, openexr; tools/setup.sh);
+# the test is skipped (exit 77) only when one of them is missing.
+#
+#   tests/readability_test.sh PATH/TO/oceanref SOURCE_DIR
+set -uo pipefail
+
+bin=${1:?usage: readability_test.sh PATH/TO/oceanref SOURCE_DIR}
+src=${2:?usage: readability_test.sh PATH/TO/oceanref SOURCE_DIR}
+for tool in oiiotool exrheader; do
+  if ! command -v "$tool" >/dev/null; then
+    echo "SKIP: $tool not installed (tools/setup.sh installs it)"
+    exit 77
+  fi
+done
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+checks=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+run() {  # run oceanref, failing the test if it does not exit 0
+  "$bin" "$@" >"$tmp/run.out" 2>"$tmp/run.err" || fail "oceanref $* exited $?: $(cat "$tmp/run.err")"
+}
+
+# readable FILE SUBIMAGES PATTERN... : oiiotool reads every subimage of FILE without an error or
+# warning, FILE has SUBIMAGES subimages (parts and levels), and its `oiiotool --info -v -a`
+# output matches every extended regex PATTERN (a channel list, an attribute line, …);
+# exrheader reads it too.
+readable() {
+  local file=$1 subimages=$2
+  shift 2
+  checks=$((checks + 1))
+  # --printstats decodes every pixel of every subimage.
+  if ! oiiotool --info -v -a "$file" --printstats >"$tmp/info" 2>&1; then
+    fail "oiiotool cannot read $file: $(head -c 400 "$tmp/info")"
+    return
+  fi
+  local problems='(^|oiiotool )(ERROR|[Ee]rror:|WARNING|[Ww]arning:)|[Nn]ot supported|[Uu]nsupported'
+  if grep -Eq "$problems" "$tmp/info"; then
+    fail "oiiotool --info $file: $(grep -E "$problems" "$tmp/info" | head -3)"
+  fi
+  local got
+  got=$(grep -c 'Stats Avg:' "$tmp/info")  # one line per subimage (part or level)
+  [ "$got" -eq "$subimages" ] || fail "$file: $got subimages, expected $subimages"
+  local p
+  for p in "$@"; do
+    grep -Eq -- "$p" "$tmp/info" || fail "$file: oiiotool --info -v -a shows no /$p/"
+  done
+  if [[ $file == *.exr ]]; then
+    exrheader "$file" >"$tmp/header" 2>&1 || fail "exrheader cannot read $file: $(head -c 400 "$tmp/header")"
+  fi
+}
+
+commit=$("$bin" --version | sed -n '1s/.*(commit \(.*\))$/\1/p')
+[ -n "$commit" ] || fail "oceanref --version names no commit"
+
+# A small multi-resolution scene (N_h 32, N_l 16, four cascades) with the default scene's
+# settings and a tiny image.
+sed -e 's/"resolution": 128/"resolution": 32/' -e 's/"low_resolution": 64/"low_resolution": 16/' \
+  -e 's/"width": 96, "height": 54/"width": 24, "height": 14/' \
+  -e 's/"columns": 256, "rows": 256/"columns": 64, "rows": 64/' \
+  "$src/reference/scenes/golden/default_small.json" >"$tmp/scene.json"
+grep -q '"low_resolution": 16' "$tmp/scene.json" || fail "could not derive the small scene"
+
+# 1. The render, without and with the AOV layers.
+run render "$tmp/scene.json" -o "$tmp/render.exr" --png "$tmp/preview.png" --threads 2
+matrix='-?[0-9.e+-]+(, -?[0-9.e+-]+){15}'
+render_attributes=("channel list: R, G, B$" "worldToCamera: $matrix" "worldToNDC: $matrix"
+  "oceanref.commit: \"$commit\"" 'oceanref.scene_sha256: "[0-9a-f]{64}"'
+  'oceanref.version: "oceanref [0-9.]+"' 'oceanref.pixel_sha256: "[0-9a-f]{64}"'
+  'chromaticities: 0.64, 0.33, 0.3, 0.6, 0.15, 0.06, 0.3127, 0.329')
+readable "$tmp/render.exr" 1 "${render_attributes[@]}"
+run render "$tmp/scene.json" -o "$tmp/aov.exr" --aov --threads 2
+readable "$tmp/aov.exr" 1 "${render_attributes[@]:1}" \
+  'channel list: R, G, B, depth, coverage, foam.R, foam.G, foam.B, lighting_error.R, '
+readable "$tmp/preview.png" 1 '24 x +14, 3 channel, uint8 png'
+
+# 2. The fields: parts c<i> (N_h) and c<i>.low (N_l) per cascade, and sum.
+run fields "$tmp/scene.json" -o "$tmp/fields.exr" --threads 2
+fields_common=("oceanref.commit: \"$commit\"" 'oceanref.scene_sha256: "[0-9a-f]{64}"'
+  'oceanref.scene: "\{"atmosphere"' 'oceanref.seed: "1"' 'oceanref.time_s: "0"'
+  'oceanref.choppiness: "-0.8' 'oceanref.units.c0.height: "m"' 'oceanref.units.c3.slope_x: "1"'
+  'oceanref.index_convention: "pixel \(column m, row n\)')
+readable "$tmp/fields.exr" 9 "${fields_common[@]}" \
+  'subimage +0: +32 x +32, 7 channel' \
+  'channel list: c0.ddx_dx, c0.ddx_dz, c0.ddz_dz, c0.foam, c0.jacobian, c0.slope_x, c0.slope_z$' \
+  'subimage +1: +16 x +16, 3 channel' 'channel list: c0.disp_x, c0.disp_z, c0.height$' \
+  'name: "c3.low"' 'oceanref.L_m: "800"' 'oceanref.N: "16"' \
+  'subimage +8: +32 x +32, 8 channel' \
+  'channel list: sum.foam, sum.height, sum.jacobian, sum.normal_x, sum.normal_y, sum.normal_z, sum.slope_x, sum.slope_z$'
+
+# 3. Every earlier stage, one part per cascade and grid.
+for stage in spectrum h0 omega hkt fields; do
+  run fields "$tmp/scene.json" --stage "$stage" --time 2.5 -o "$tmp/$stage.exr" --threads 2
+done
+stage_common=("oceanref.commit: \"$commit\"" 'oceanref.time_s: "2.5"'
+  'oceanref.index_convention: "pixel \(column a, row b\) holds the integer wavevector'
+  'oceanref.band_rad_per_m: "0,0.12566370614359174"' 'subimage +1: +16 x +16')
+readable "$tmp/spectrum.exr" 8 "${stage_common[@]}" 'oceanref.stage: "spectrum"' \
+  'channel list: c0.in_band, c0.theta, c0.variance$' 'oceanref.units.c0.low.variance: "m\^2"' \
+  'oceanref.units.c0.theta: "m\^4"'
+readable "$tmp/h0.exr" 8 "${stage_common[@]}" 'channel list: c2.h0.im, c2.h0.re$' \
+  'oceanref.units.c2.h0.re: "m"'
+readable "$tmp/omega.exr" 8 "${stage_common[@]}" 'channel list: c1.k, c1.kx, c1.kz, c1.omega$' \
+  'oceanref.units.c1.omega: "rad/s"'
+readable "$tmp/hkt.exr" 8 "${stage_common[@]}" 'channel list: c3.low.hkt.im, c3.low.hkt.re$'
+readable "$tmp/fields.exr" 9 'oceanref.time_s: "2.5"' 'oceanref.stage: "fields"'
+
+# The worked example of docs/BACKENDS.md: one wave component reproduced by hand from the stages.
+mkdir -p "$tmp/example"
+for stage in spectrum h0 omega hkt fields; do
+  run fields "$src/reference/scenes/backend_example.json" --stage "$stage" -o "$tmp/example/$stage.exr"
+done
+checks=$((checks + 1))
+python3 "$src/docs/backend_example.py" "$tmp/example" >"$tmp/example.out" 2>&1 ||
+  fail "docs/backend_example.py: $(cat "$tmp/example.out")"
+
+# 4. The sky hemisphere.
+run sky --sun-zenith-deg 60 --size 16 -o "$tmp/sky.exr"
+readable "$tmp/sky.exr" 1 'channel list: R, G, B'
+
+# 5. compare's report (diff.exr and the PNGs), when compare writes one.
+run compare "$tmp/render.exr" "$tmp/render.exr" --report "$tmp/report"
+for f in "$tmp"/report/*.exr "$tmp"/report/*.png; do
+  [ -e "$f" ] && readable "$f" 1
+done
+[ -e "$tmp/report/diff.exr" ] || fail "compare --report wrote no diff.exr"
+
+# 6. The checked-in goldens: a fields file has 2 parts per cascade with multi-resolution (1
+# without) and the part sum, as its own attributes describe.
+for f in "$src"/reference/golden/*.exr; do
+  case $f in
+    *.fields.exr)
+      info=$(oiiotool --info -v "$f" 2>&1)
+      attribute() { sed -n "s/^ *oceanref.$1: \"\(.*\)\"$/\1/p" <<<"$info" | head -n1; }
+      cascades=$(attribute cascade_sizes_m | tr ',' '\n' | grep -c .)
+      per_cascade=$([ "$(attribute resolution)" = "$(attribute low_resolution)" ] && echo 1 || echo 2)
+      readable "$f" $((cascades * per_cascade + 1)) 'name: "sum"' 'name: "c0"' \
+        'oceanref.scene_sha256: "[0-9a-f]{64}"' 'oceanref.units.sum.height: "m"' ;;
+    *) readable "$f" 1 'channel list: R, G, B$' 'worldToCamera: ' 'worldToNDC: ' 'oceanref.commit: ' ;;
+  esac
+done
+
+echo "$checks files read, $failures failures"
+[ "$failures" -eq 0 ]
