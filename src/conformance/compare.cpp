@@ -718,7 +718,9 @@ std::string comparison_text(const Comparison& c) {
       out << "not compared (golden only): " << join(p.not_compared) << '\n';
   }
   if (!c.parts_not_compared.empty()) {
-    out << "parts not compared (golden only): " << join(c.parts_not_compared) << '\n';
+    std::string parts;  // the labels carry their own quotes: part 'sum', (unnamed part)
+    for (const std::string& p : c.parts_not_compared) parts += (parts.empty() ? "" : ", ") + p;
+    out << "parts not compared (golden only): " << parts << '\n';
   }
   if (c.nonfinite_mismatches > 0) {
     out << "non-finite mismatches: " << c.nonfinite_mismatches << " (always a failure)\n";
