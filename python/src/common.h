@@ -5,8 +5,10 @@
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,7 +28,8 @@ class ArgumentError : public std::invalid_argument {
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // A new float64 array of the given shape holding `values` (row-major).
-py::array_t<double> to_array(const std::vector<double>& values, const std::vector<py::ssize_t>& shape);
+py::array_t<double> to_array(const std::vector<double>& values,
+                             const std::vector<py::ssize_t>& shape);
 
 // A direction x,y,z (normalized; a zero vector is rejected naming `key`).
 std::array<double, 3> unit_vector(const std::string& key, const py::handle& value);

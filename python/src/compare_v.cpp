@@ -123,8 +123,8 @@ void bind_compare(py::module_& m) {
         const std::vector<ExrPart> g = load("golden", golden);
         const auto check = [](const char* key, double v, double hi) {
           if (!(v >= 0.0 && v <= hi)) {
-            throw ArgumentError(key, "must be in [0, " + format_number(hi) + "], got " +
-                                         format_number(v));
+            throw ArgumentError(
+                key, "must be in [0, " + format_number(hi) + "], got " + format_number(v));
           }
         };
         check("abs", abs, 1e30);
@@ -158,9 +158,9 @@ void bind_compare(py::module_& m) {
         }
         return result_dict(result, golden_name, candidate_name);
       },
-      py::arg("candidate"), py::arg("golden"), py::arg("profile"), py::arg("abs"),
-      py::arg("rel"), py::arg("floor"), py::arg("ulp"), py::arg("max_fail_share"),
-      py::arg("channels"), py::arg("candidate_name"), py::arg("golden_name"));
+      py::arg("candidate"), py::arg("golden"), py::arg("profile"), py::arg("abs"), py::arg("rel"),
+      py::arg("floor"), py::arg("ulp"), py::arg("max_fail_share"), py::arg("channels"),
+      py::arg("candidate_name"), py::arg("golden_name"));
 }
 
 }  // namespace oceanref::python

@@ -30,15 +30,17 @@ Sky sky_from(double zenith_deg, double azimuth_deg, double turbidity) {
   return make_sky(turbidity, zenith_deg * kDegree, azimuth_deg * kDegree);
 }
 
-py::array_t<double> vec3(const Vec3& v) { return to_array({v[0], v[1], v[2]}, {3}); }
+py::array_t<double> vec3(const Vec3& v) {
+  return to_array({v[0], v[1], v[2]}, {3});
+}
 
 // As `oceanref brdf --sigma2`: two slope variances, each in [1e-6, 1].
 SlopeVariance slope_variance(const py::handle& value) {
   const DoubleArray a = DoubleArray::ensure(value);
   if (!a || a.size() != 2 || !(a.data()[0] >= 1e-6 && a.data()[0] <= 1.0) ||
       !(a.data()[1] >= 1e-6 && a.data()[1] <= 1.0)) {
-    throw ArgumentError("sigma2", "expected (sx, sy) with each in [1e-6, 1], got " +
-                                      std::string(py::str(value)));
+    throw ArgumentError(
+        "sigma2", "expected (sx, sy) with each in [1e-6, 1], got " + std::string(py::str(value)));
   }
   return {a.data()[0], a.data()[1]};
 }
@@ -96,8 +98,8 @@ void bind_lighting(py::module_& m) {
         std::vector<double> rgb(static_cast<std::size_t>(3 * n));
         std::vector<double> xyY(rgb.size());
         for (py::ssize_t i = 0; i < n; ++i) {
-          const py::array_t<double> row = to_array(
-              {directions.at(i, 0), directions.at(i, 1), directions.at(i, 2)}, {3});
+          const py::array_t<double> row =
+              to_array({directions.at(i, 0), directions.at(i, 1), directions.at(i, 2)}, {3});
           const Vec3 d = unit_vector("direction", row);
           const Vec3 c = sky_radiance_rgb(sky, d);
           const Chromaticity chroma = sky_chromaticity(sky, d);
@@ -140,10 +142,9 @@ void bind_lighting(py::module_& m) {
       [](const py::object& view, const py::object& light, const py::object& sigma2,
          const py::object& normal, double wind_deg, const std::string& fresnel,
          const std::string& erfc) {
-        const BrdfTerms t =
-            ocean_brdf(unit_vector("light", light), unit_vector("view", view),
-                       frame_from(normal, wind_deg), slope_variance(sigma2),
-                       options_from(fresnel, erfc));
+        const BrdfTerms t = ocean_brdf(unit_vector("light", light), unit_vector("view", view),
+                                       frame_from(normal, wind_deg), slope_variance(sigma2),
+                                       options_from(fresnel, erfc));
         py::dict d;
         d["zeta_x"] = t.zeta_x;
         d["zeta_y"] = t.zeta_y;
@@ -156,8 +157,8 @@ void bind_lighting(py::module_& m) {
         d["brdf_cos"] = t.brdf_cos;
         return d;
       },
-      py::arg("view"), py::arg("light"), py::arg("sigma2"), py::arg("normal"),
-      py::arg("wind_deg"), py::arg("fresnel"), py::arg("erfc"));
+      py::arg("view"), py::arg("light"), py::arg("sigma2"), py::arg("normal"), py::arg("wind_deg"),
+      py::arg("fresnel"), py::arg("erfc"));
   m.def(
       "_mean_fresnel_reference",
       [](const py::object& view, const py::object& sigma2, const py::object& normal,
@@ -188,8 +189,8 @@ void bind_lighting(py::module_& m) {
         const auto o = options_from(fresnel, erfc);
         const double t = tolerance_from(tolerance);
         if (!(absolute >= 0.0 && absolute <= 1e30)) {
-          throw ArgumentError("absolute", "must be in [0, 1e30] cd/m^2, got " +
-                                              format_number(absolute));
+          throw ArgumentError("absolute",
+                              "must be in [0, 1e30] cd/m^2, got " + format_number(absolute));
         }
         RgbEstimate e;
         {
@@ -208,9 +209,9 @@ void bind_lighting(py::module_& m) {
       py::arg("absolute"), py::arg("fresnel"), py::arg("erfc"));
   m.def(
       "_reflected_sun_reference",
-      [](const py::object& view, const py::object& sun, const py::object& sigma2,
-         double sun_radius, const py::object& normal, double wind_deg, double tolerance,
-         double absolute, const std::string& fresnel, const std::string& erfc) {
+      [](const py::object& view, const py::object& sun, const py::object& sigma2, double sun_radius,
+         const py::object& normal, double wind_deg, double tolerance, double absolute,
+         const std::string& fresnel, const std::string& erfc) {
         const auto v = unit_vector("view", view);
         const auto l = unit_vector("sun", sun);
         const auto frame = frame_from(normal, wind_deg);
@@ -218,8 +219,8 @@ void bind_lighting(py::module_& m) {
         const auto o = options_from(fresnel, erfc);
         const double t = tolerance_from(tolerance);
         if (!(sun_radius > 0.0 && sun_radius <= 0.1)) {
-          throw ArgumentError("sun_radius", "must be in (0, 0.1] rad, got " +
-                                                format_number(sun_radius));
+          throw ArgumentError("sun_radius",
+                              "must be in (0, 0.1] rad, got " + format_number(sun_radius));
         }
         if (!(absolute >= 0.0 && absolute <= 1e30)) {
           throw ArgumentError("absolute", "must be in [0, 1e30], got " + format_number(absolute));
@@ -231,9 +232,9 @@ void bind_lighting(py::module_& m) {
         }
         return scalar_estimate(e);
       },
-      py::arg("view"), py::arg("sun"), py::arg("sigma2"), py::arg("sun_radius"),
-      py::arg("normal"), py::arg("wind_deg"), py::arg("tolerance"), py::arg("absolute"),
-      py::arg("fresnel"), py::arg("erfc"));
+      py::arg("view"), py::arg("sun"), py::arg("sigma2"), py::arg("sun_radius"), py::arg("normal"),
+      py::arg("wind_deg"), py::arg("tolerance"), py::arg("absolute"), py::arg("fresnel"),
+      py::arg("erfc"));
   m.attr("SUN_ANGULAR_RADIUS") = kSunAngularRadius;
 }
 

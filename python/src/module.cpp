@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "build_info.h"
 #include "common.h"
 #include "scene/scene.h"
 #include "spectrum/model.h"

@@ -59,8 +59,8 @@ std::map<std::string, std::vector<double>> scene_fields(const Scene& scene, doub
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const std::string name = "c" + std::to_string(i) + ".";
     for (int q = 0; q < kFieldCount; ++q) {
-      const int n = is_low_resolution_field(Field(q)) ? fields[i].low_resolution
-                                                      : fields[i].high_resolution;
+      const int n =
+          is_low_resolution_field(Field(q)) ? fields[i].low_resolution : fields[i].high_resolution;
       put(name + std::string(kFieldNames[static_cast<std::size_t>(q)]), n,
           fields[i].values[static_cast<std::size_t>(q)]);
     }
@@ -119,7 +119,8 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
   if (spp) {
     const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(*spp))));
     if (*spp < 1 || *spp > 256 || axis * axis != *spp) {
-      throw ArgumentError("spp", "must be a square number in [1, 256], got " + std::to_string(*spp));
+      throw ArgumentError("spp",
+                          "must be a square number in [1, 256], got " + std::to_string(*spp));
     }
     scene.image.samples_per_axis = axis;
   }
@@ -190,13 +191,15 @@ py::list read_exr_file(const std::string& path) {
 void bind_scene(py::module_& m) {
   py::class_<PyScene>(m, "Scene",
                       "A validated scene (scene files: DESIGN.md, reference/scene.schema.json).")
-      .def_property_readonly("canonical", [](const PyScene& s) { return s.scene.canonical; },
-                             "the parsed document as canonical JSON (sorted keys): what is hashed")
+      .def_property_readonly(
+          "canonical", [](const PyScene& s) { return s.scene.canonical; },
+          "the parsed document as canonical JSON (sorted keys): what is hashed")
       .def_property_readonly(
           "sha256", [](const PyScene& s) { return sha256_hex(s.scene.canonical); },
           "SHA-256 of the canonical JSON (the EXR attribute oceanref.scene_sha256)")
       .def_property_readonly("seed", [](const PyScene& s) { return s.scene.seed; })
-      .def_property_readonly("time", [](const PyScene& s) { return s.scene.time; }, "t [s]")
+      .def_property_readonly(
+          "time", [](const PyScene& s) { return s.scene.time; }, "t [s]")
       .def_property_readonly("width", [](const PyScene& s) { return s.scene.image.width; })
       .def_property_readonly("height", [](const PyScene& s) { return s.scene.image.height; })
       .def_property_readonly("samples_per_pixel",
@@ -204,9 +207,10 @@ void bind_scene(py::module_& m) {
                                return s.scene.image.samples_per_axis *
                                       s.scene.image.samples_per_axis;
                              })
-      .def_property_readonly("cascade_sizes", [](const PyScene& s) { return s.scene.waves.sizes; },
-                             "L_i [m]")
-      .def_property_readonly("resolution", [](const PyScene& s) { return s.scene.waves.resolution; })
+      .def_property_readonly(
+          "cascade_sizes", [](const PyScene& s) { return s.scene.waves.sizes; }, "L_i [m]")
+      .def_property_readonly("resolution",
+                             [](const PyScene& s) { return s.scene.waves.resolution; })
       .def_property_readonly("low_resolution",
                              [](const PyScene& s) { return s.scene.waves.low_resolution; });
   m.def("_scene_from_file", &scene_from_file, py::arg("path"));

@@ -210,8 +210,8 @@ void bind_spectrum(py::module_& m) {
             try {
               r = spectral_moments(s.spectrum, k_max);
             } catch (const std::runtime_error& e) {
-              throw ArgumentError("k_max", std::string(e.what()) +
-                                               " (k_max = " + format_number(k_max) + ")");
+              throw ArgumentError(
+                  "k_max", std::string(e.what()) + " (k_max = " + format_number(k_max) + ")");
             }
             py::dict d;
             d["m0"] = r.m0;
