@@ -1,0 +1,62 @@
+"""The reference image from Python equals the command line's render bit for bit."""
+
+import numpy as np
+import pytest
+
+import oceanref
+
+# A tiny fast-lighting scene: 40×24 pixels, one sample each.
+TINY = {
+    "seed": 7,
+    "waves": {"spectrum": {"model": "jonswap", "wind_speed": 9, "fetch": 40000},
+              "cascades": {"sizes": [50]}, "resolution": 16},
+    "camera": {"position": [0, 5, 0], "look_at": [0, 0, 40]},
+    "grid": {"columns": 40, "rows": 40},
+    "atmosphere": {"sun_zenith_deg": 60, "sun_azimuth_deg": 80, "turbidity": 2.5},
+    "shading": {"accuracy": "fast"},
+    "render": {"width": 40, "height": 24, "samples_per_pixel": 1},
+}
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    import json
+    path = tmp_path_factory.mktemp("scene") / "tiny.json"
+    path.write_text(json.dumps(TINY))
+    return path
+
+
+def test_render_equals_the_command_line(tiny, cli, tmp_path):
+    out = tmp_path / "tiny.exr"
+    cli("render", tiny, "-o", out, "--threads", "2")
+    (part,) = oceanref.read_exr(out)
+    img = oceanref.render(tiny, threads=1)
+    assert img.shape == (24, 40, 3) and img.dtype == np.float64
+    for c, name in enumerate("RGB"):
+        assert np.array_equal(img[:, :, c].astype(np.float32), part["channels"][name]), name
+    assert oceanref.pixel_sha256(img) == part["attributes"]["oceanref.pixel_sha256"]
+    assert oceanref.radiance_f64_sha256(img) == part["attributes"]["oceanref.radiance_f64_sha256"]
+    assert oceanref.load_scene(tiny).sha256 == part["attributes"]["oceanref.scene_sha256"]
+    assert img.max() > 0.0  # the sea and sky are lit
+
+
+def test_render_matches_a_golden_image(golden_scene, manifest):
+    # mastin_spread_direct_tiny: reference lighting, 48×27 at 1 spp.
+    name = "mastin_spread_direct_tiny"
+    img = oceanref.render(golden_scene(name), threads=2)
+    assert oceanref.pixel_sha256(img) == manifest[name]["pixel_sha256"]
+    assert oceanref.radiance_f64_sha256(img) == manifest[name]["radiance_f64_sha256"]
+
+
+def test_spp_and_aov(tiny):
+    a = oceanref.render(tiny, threads=2, aov=True)
+    assert np.array_equal(a["radiance"], oceanref.render(tiny, threads=2))
+    # The terms add up to the radiance where the sea covers the whole pixel (1 spp; no foam).
+    sea = a["coverage"] == 1.0
+    assert sea.sum() > 100
+    total = a["sun"] + a["sky"] + a["sea"] + a["foam"]
+    np.testing.assert_allclose(total[sea], a["radiance"][sea], rtol=1e-12, atol=0)
+    b = oceanref.render(tiny, threads=2, spp=4)
+    assert not np.array_equal(b, a["radiance"])  # the setting reaches the image
+    with pytest.raises(ValueError, match=r"^spp: must be a square number in \[1, 256\], got 3"):
+        oceanref.render(tiny, spp=3)
