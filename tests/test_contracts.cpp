@@ -106,7 +106,7 @@ TEST_CASE("render file: channels, attributes and the two hashes as docs/FILES.md
   CHECK(radiance_f64_sha256(changed) != r.radiance_f64_sha256);
   CHECK(radiance_f64_sha256(r.image.radiance) == r.radiance_f64_sha256);
 
-  SUBCASE("AOVs add the layers, not the pixels") {
+  {  // AOVs add the layers, not the pixels
     options.aov = true;
     const RenderedScene a = render_scene(scene, options);
     CHECK(a.pixel_sha256 == r.pixel_sha256);
@@ -170,57 +170,62 @@ TEST_CASE("fields file: parts, unique channel names, hashes of the doubles and t
 
 TEST_CASE("golden suite: verify passes on a copy, fails naming the hash after a change") {
   const auto root = golden_copy("oceanref_test_golden", kTinyGolden);
+  const auto manifest_path = root / "golden" / "manifest.json";
   GoldenOptions options;
   options.threads = 2;
+  // Bad input names the option, before anything is rendered.
+  options.only = {"no_such_scene"};
+  CHECK_THROWS_AS(verify_golden(root, options), GoldenInputError);
+  options.only = {kTinyGolden};
+  try {
+    verify_golden(root / "missing", options);
+    FAIL("no error");
+  } catch (const GoldenInputError& e) {
+    CHECK(e.option() == "root");
+  }
+
   const GoldenReport ok = verify_golden(root, options);
   REQUIRE(ok.scenes.size() == 1);
   CHECK(ok.pass());
   CHECK(ok.scenes[0].status == "identical");
   CHECK(ok.scenes[0].differs.empty());
-  CHECK(golden_text(ok).find(kTinyGolden + ",identical,") != std::string::npos);
+  CHECK(golden_text(ok) == "name,status,pixel_sha256\n" + kTinyGolden + ",identical," +
+                               ok.scenes[0].pixel_sha256 + "\n");
 
-  SUBCASE("a stored hash altered: that key, and only it, differs") {
-    const auto manifest_path = root / "golden" / "manifest.json";
-    nlohmann::json m = read_json(manifest_path);
-    m["entries"][0]["fields_sha256"] = std::string(64, '0');
-    write_json(manifest_path, m);
-    const GoldenReport bad = verify_golden(root, options);
-    CHECK_FALSE(bad.pass());
-    CHECK(bad.mismatches == 1);
-    CHECK(bad.scenes[0].status == "MISMATCH");
-    CHECK(bad.scenes[0].differs == std::vector<std::string>{"fields_sha256"});
-    CHECK(golden_text(bad).find("# differs: fields_sha256\n") != std::string::npos);
-  }
-  SUBCASE("the scene altered (another seed): every hash differs; update rewrites atomically") {
-    const auto scene_path = root / "scenes" / "golden" / (kTinyGolden + ".json");
-    nlohmann::json s = read_json(scene_path);
-    s["seed"] = 20;
-    write_json(scene_path, s);
-    const GoldenReport bad = verify_golden(root, options);
-    CHECK_FALSE(bad.pass());
-    CHECK(bad.scenes[0].differs.size() == 4);
-    // The stored image is compared with the new one: compare's table follows.
-    CHECK(bad.scenes[0].comparison.find("fail") != std::string::npos);
+  // A stored hash altered: that key, and only it, differs.
+  const nlohmann::json stored = read_json(manifest_path);
+  nlohmann::json m = stored;
+  m["entries"][0]["fields_sha256"] = std::string(64, '0');
+  write_json(manifest_path, m);
+  const GoldenReport bad_hash = verify_golden(root, options);
+  CHECK_FALSE(bad_hash.pass());
+  CHECK(bad_hash.mismatches == 1);
+  CHECK(bad_hash.scenes[0].status == "MISMATCH");
+  CHECK(bad_hash.scenes[0].differs == std::vector<std::string>{"fields_sha256"});
+  CHECK(golden_text(bad_hash).find("# differs: fields_sha256\n") != std::string::npos);
+  write_json(manifest_path, stored);
 
-    const GoldenReport updated = update_golden(root, options);
-    CHECK(updated.pass());
-    CHECK(updated.scenes[0].status == "updated");
-    CHECK_FALSE(std::filesystem::exists(root / "golden" / "manifest.json.tmp"));
-    const nlohmann::json m = read_json(root / "golden" / "manifest.json");
-    CHECK(m["entries"][0]["pixel_sha256"] == updated.scenes[0].pixel_sha256);
-    CHECK(m["entries"][0]["pixel_sha256"] != ok.scenes[0].pixel_sha256);
-    const GoldenReport again = verify_golden(root, options);
-    CHECK(again.pass());
-    CHECK(update_golden(root, options).scenes[0].status == "unchanged");
-  }
-  SUBCASE("bad input names the option") {
-    options.only = {"no_such_scene"};
-    CHECK_THROWS_AS(verify_golden(root, options), GoldenInputError);
-    try {
-      verify_golden(root / "missing", {});
-    } catch (const GoldenInputError& e) {
-      CHECK(e.option() == "root");
-    }
-  }
+  // The scene altered (another seed; fast lighting to keep the test short): every hash differs
+  // and the stored image is compared with the new one.
+  const auto scene_path = root / "scenes" / "golden" / (kTinyGolden + ".json");
+  nlohmann::json s = read_json(scene_path);
+  s["seed"] = 20;
+  s["shading"]["accuracy"] = "fast";
+  write_json(scene_path, s);
+  const GoldenReport bad_scene = verify_golden(root, options);
+  CHECK_FALSE(bad_scene.pass());
+  CHECK(bad_scene.scenes[0].differs.size() == 4);
+  CHECK(bad_scene.scenes[0].comparison.find("result: fail") != std::string::npos);
+
+  // Update rewrites the manifest (no temporary left behind) and the files; verify then passes.
+  const GoldenReport updated = update_golden(root, options);
+  CHECK(updated.pass());
+  CHECK(updated.scenes[0].status == "updated");
+  CHECK_FALSE(std::filesystem::exists(manifest_path.string() + ".tmp"));
+  const nlohmann::json rewritten = read_json(manifest_path);
+  CHECK(rewritten["entries"][0]["pixel_sha256"] == updated.scenes[0].pixel_sha256);
+  CHECK(rewritten["entries"][0]["pixel_sha256"] != ok.scenes[0].pixel_sha256);
+  CHECK(rewritten["entries"][0]["lighting_accuracy"].get<std::string>().rfind("fast", 0) == 0);
+  CHECK(verify_golden(root, options).pass());
   std::filesystem::remove_all(root);
 }
