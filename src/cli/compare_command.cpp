@@ -8,16 +8,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
-#include <set>
 #include <sstream>
 #include <string>
 
-#include "cli/fields_command.h"
-#include "cli/render_command.h"
 #include "cli/text.h"
 #include "conformance/compare.h"
+#include "conformance/golden.h"
 #include "conformance/report.h"
-#include "io/sha256.h"
 
 namespace oceanref::cli {
 
@@ -266,102 +263,26 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
     sub->add_option("--only", f->only, "NAME,NAME,…: just these scenes of the manifest");
   }
   update->add_flag("--yes", f->yes, "required: really rewrite reference/golden");
-  return [f, verify, update](std::ostream& out) {
+  return [f, update](std::ostream& out) {
     if (update->parsed() && !f->yes) {
       throw UsageError("--yes", "golden update rewrites the references; pass --yes to do it");
     }
-    const std::filesystem::path root(f->root);
-    const std::filesystem::path manifest_path = root / "golden" / "manifest.json";
-    std::ifstream in(manifest_path);
-    if (!in) throw UsageError("--root", "no manifest at " + manifest_path.string());
-    nlohmann::json manifest;
-    try {
-      manifest = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      throw UsageError("--root", manifest_path.string() + ": not valid JSON: " + e.what());
-    }
-    const int threads = resolve_threads(f->threads);
-    std::set<std::string> only;
+    GoldenOptions options;
+    options.threads = resolve_threads(f->threads);
+    options.log = [](const std::string& message) { progress("oceanref", message); };
     for (std::size_t start = 0; !f->only.empty() && start <= f->only.size();) {
       const std::size_t comma = std::min(f->only.find(',', start), f->only.size());
-      only.insert(f->only.substr(start, comma - start));
+      options.only.push_back(f->only.substr(start, comma - start));
       start = comma + 1;
     }
-    for (const std::string& name : only) {
-      const auto& entries = manifest.at("entries");
-      if (std::none_of(entries.begin(), entries.end(),
-                       [&](const auto& e) { return e.at("name") == name; })) {
-        throw UsageError("--only", "no scene named '" + name + "' in " + manifest_path.string());
-      }
+    GoldenReport report;
+    try {
+      report = update->parsed() ? update_golden(f->root, options) : verify_golden(f->root, options);
+    } catch (const GoldenInputError& e) {
+      throw UsageError("--" + e.option(), e.what());
     }
-    int mismatches = 0;
-    out << "name,status,pixel_sha256\n";
-    for (auto& entry : manifest.at("entries")) {
-      const std::string name = entry.at("name").get<std::string>();
-      if (!only.empty() && !only.contains(name)) continue;
-      const std::filesystem::path scene_path = root / entry.at("scene").get<std::string>();
-      const RenderedScene r = render_scene(scene_path.string(), threads, 0, false, false);
-      const Scene scene = load_scene(scene_path.string());
-      const Ocean ocean = realize_ocean(scene.waves, threads);
-      const FieldsImage fields_output = fields_image(scene, ocean, threads);
-      const std::string& fields_hash = fields_output.sha256;
-      const std::filesystem::path image_path = root / "golden" / (name + ".exr");
-      const std::filesystem::path fields_path = root / "golden" / (name + ".fields.exr");
-      // Identity on the float32 outputs and on the double buffers behind them.
-      const bool same = entry.value("pixel_sha256", "") == r.pixel_sha256 &&
-                        entry.value("radiance_f64_sha256", "") == r.radiance_f64_sha256 &&
-                        entry.value("fields_sha256", "") == fields_hash &&
-                        entry.value("fields_f64_sha256", "") == fields_output.f64_sha256;
-      if (update->parsed()) {
-        write_exr(image_path.string(), r.exr);
-        write_exr_parts(fields_path.string(), fields_output.parts);
-        entry["pixel_sha256"] = r.pixel_sha256;
-        entry["fields_sha256"] = fields_hash;
-        entry["radiance_f64_sha256"] = r.radiance_f64_sha256;
-        entry["fields_f64_sha256"] = fields_output.f64_sha256;
-        entry["scene_sha256"] = sha256_hex(scene.canonical);
-        entry["width"] = r.exr.width;
-        entry["height"] = r.exr.height;
-        entry["version"] = r.exr.attributes.at("oceanref.version");
-        entry["lighting_accuracy"] = r.exr.attributes.at("oceanref.lighting_accuracy");
-        const LightingErrorSummary e = summarize_lighting_error(r.image);
-        if (e.estimated) entry["lighting_error_max_relative"] = e.max_relative;
-        entry["unconverged_samples"] = r.image.unconverged_samples;
-        out << name << ',' << (same ? "unchanged" : "updated") << ',' << r.pixel_sha256 << '\n';
-        continue;
-      }
-      out << name << ',' << (same ? "identical" : "MISMATCH") << ',' << r.pixel_sha256 << '\n';
-      if (!same) {
-        ++mismatches;
-        out << "# differs:";
-        for (const auto& [key, value] :
-             {std::pair{"pixel_sha256", r.pixel_sha256},
-              std::pair{"radiance_f64_sha256", r.radiance_f64_sha256},
-              std::pair{"fields_sha256", fields_hash},
-              std::pair{"fields_f64_sha256", fields_output.f64_sha256}}) {
-          if (entry.value(key, "") != value) out << ' ' << key;
-        }
-        out << '\n';
-        try {
-          out << comparison_text(compare_parts({ExrPart{"", 0, 0, read_exr(image_path.string())}},
-                                               {ExrPart{"", 0, 0, r.exr}}, {},
-                                               uniform_profile({})));
-        } catch (const std::exception& e) {
-          out << "# cannot compare with " << image_path.string() << ": " << e.what() << '\n';
-        }
-      }
-    }
-    if (update->parsed()) {
-      const std::filesystem::path temporary = manifest_path.string() + ".tmp";
-      {
-        std::ofstream file(temporary);
-        file << manifest.dump(2) << '\n';
-        if (!file) throw std::runtime_error(manifest_path.string() + ": cannot write");
-      }
-      std::filesystem::rename(temporary, manifest_path);
-    }
-    (void)verify;
-    if (mismatches > 0) throw CheckFailed{};
+    out << golden_text(report);
+    if (!report.pass()) throw CheckFailed{};
   };
 }
 

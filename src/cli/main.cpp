@@ -8,11 +8,11 @@
 #include "cli/brdf_command.h"
 #include "cli/compare_command.h"
 #include "cli/fields_command.h"
-#include "cli/provenance.h"
 #include "cli/render_command.h"
 #include "cli/sky_command.h"
 #include "cli/spectrum_command.h"
 #include "cli/text.h"
+#include "conformance/provenance.h"
 #include "core/fp_environment.h"
 
 int main(int argc, char** argv) {
@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   const oceanref::ReferenceFpEnvironment fp;
   CLI::App app{"oceanref: deterministic CPU reference renderer for spectral ocean surfaces",
                "oceanref"};
-  app.set_version_flag("--version", oceanref::cli::version_text());
+  app.set_version_flag("--version", oceanref::version_text());
   app.require_subcommand(1);
   const auto run_spectrum = oceanref::cli::add_spectrum_command(app);
   const auto run_fields = oceanref::cli::add_fields_command(app);

@@ -38,12 +38,6 @@ std::vector<double> parse_number_list(const std::string& flag, std::string_view 
   return values;
 }
 
-std::string format_number(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
-
 std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_view text) {
   const std::vector<double> v = parse_number_list(flag, text);
   if (v.size() != 3) throw UsageError(flag, "expected x,y,z, got '" + std::string(text) + "'");

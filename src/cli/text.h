@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/format.h"
+
 namespace oceanref::cli {
 
 // A bad command-line value: `flag` is the flag as typed (e.g. "--wind-speed").
@@ -35,7 +37,5 @@ double parse_number(const std::string& flag, std::string_view text, bool allow_i
 std::vector<double> parse_number_list(const std::string& flag, std::string_view text);
 // Three comma-separated finite numbers, not all zero, normalized to unit length.
 std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_view text);
-// 17 significant digits (round-trips every double), "inf"/"-inf"/"nan" for the rest.
-std::string format_number(double v);
 
 }  // namespace oceanref::cli

@@ -1,4 +1,4 @@
-#include "cli/lighting_map.h"
+#include "conformance/lighting_map.h"
 
 #include <algorithm>
 #include <array>
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/text.h"
+#include "core/format.h"
 #include "core/math.h"
 #include "io/exr.h"
 #include "shading/lighting_terms.h"
@@ -24,7 +24,7 @@
 #include "shading/reference_lighting.h"
 #include "waves/fft.h"
 
-namespace oceanref::cli {
+namespace oceanref {
 
 namespace {
 
@@ -44,16 +44,7 @@ constexpr double kWindAngleDeg = 20.0;
 constexpr double kTiltZenithDeg = 30.0, kTiltAzimuthDeg = 45.0;
 constexpr double kTruthTolerance = 1e-10;
 
-struct SweepSpec {
-  std::vector<double> cos_view;      // v_n
-  std::vector<double> azimuths_deg;  // φ
-  std::vector<SlopeVariance> roughness;
-  std::vector<bool> tilted;
-  std::vector<std::pair<const char*, double>> suns;  // name, zenith angle [deg]
-  std::vector<int> fast_orders, sun_orders;
-  std::vector<double> tolerances;
-  double min_timing_seconds;  // each timed setting repeats its pass over the cases until this
-};
+using SweepSpec = LightingSweepSpec;
 
 SweepSpec full_sweep() {
   return {{0.9, 0.5, 0.2, 0.05, 0.01, 0.002},
@@ -172,7 +163,7 @@ Sweep make_sweep(const SweepSpec& spec) {
 
 // ---- The integrals --------------------------------------------------------------------------
 
-enum class Integral { sky, fresnel, sun };
+using Integral = LightingIntegral;
 constexpr Integral kIntegrals[] = {Integral::sky, Integral::fresnel, Integral::sun};
 const char* integral_name(Integral i) {
   return i == Integral::sky       ? "reflected_sky"
@@ -250,20 +241,7 @@ double tolerance_bound(Integral integral, const SunSetting& sun, double toleranc
 
 // ---- Measurement ----------------------------------------------------------------------------
 
-struct Row {
-  Integral integral = Integral::sky;
-  bool fast = true;
-  double setting = 0.0;  // order, or tolerance
-  std::string label;
-  std::size_t cases = 0;
-  double median = 0.0, p95 = 0.0, max = 0.0;
-  double seconds = 0.0;      // mean wall-clock time per integral
-  double evaluations = 0.0;  // reference: mean integrand evaluations per integral
-  int estimate_violations = 0;
-  double worst_ratio = 0.0;  // the largest actual error / (estimate + the truth's estimate)
-  int tolerance_misses = 0;
-  int unconverged = 0;
-};
+using Row = LightingMapRow;
 
 // Runs `pass` (every case once) until min_seconds have passed; the mean time per case.
 double time_per_case(std::size_t cases, double min_seconds, const std::function<void()>& pass) {
@@ -305,15 +283,14 @@ std::string tolerance_label(double t) {
   return short_number(t, 1);
 }
 
-struct Map {
-  std::vector<Row> rows;
-  double truth_seconds = 0.0;  // wall clock of the truths (all threads)
-  std::vector<int> truth_unconverged = {0, 0, 0};
-  std::vector<double> truth_evaluations = {0, 0, 0};  // mean per integral
-};
+using Map = LightingMap;
 
 Map measure(const Sweep& sweep, const SweepSpec& spec, int threads) {
   Map map;
+  map.spec = spec;
+  map.threads = threads;
+  map.lit_cases = sweep.lit.size();
+  map.fresnel_cases = sweep.fresnel.size();
   for (const Integral integral : kIntegrals) {
     const std::vector<Case>& cases = integral == Integral::fresnel ? sweep.fresnel : sweep.lit;
     const std::size_t n = cases.size();
@@ -593,8 +570,8 @@ std::string svg_text(const Map& map) {
   return s.str();
 }
 
-void print_markdown(std::ostream& out, const Map& map, const Sweep& sweep, const SweepSpec& spec,
-                    int threads) {
+void print_markdown(std::ostream& out, const Map& map) {
+  const SweepSpec& spec = map.spec;
   const ShadingSettings defaults;
   out << "Sweep: v_n = V·N ∈ {";
   for (std::size_t i = 0; i < spec.cos_view.size(); ++i)
@@ -612,11 +589,10 @@ void print_markdown(std::ostream& out, const Map& map, const Sweep& sweep, const
       << "} × sun zenith ∈ {";
   for (std::size_t i = 0; i < spec.suns.size(); ++i)
     out << (i ? ", " : "") << short_number(spec.suns[i].second, 3) << "°";
-  out << "}: " << sweep.lit.size() << " cases for the reflected sky and the sun disk, "
-      << sweep.fresnel.size()
-      << " for F̄ (independent of the sun). Truth: the reference at tolerance "
+  out << "}: " << map.lit_cases << " cases for the reflected sky and the sun disk, "
+      << map.fresnel_cases << " for F̄ (independent of the sun). Truth: the reference at tolerance "
       << short_number(kTruthTolerance, 1) << " (" << time_text(map.truth_seconds) << " on "
-      << threads << " threads; unconverged: " << map.truth_unconverged[0] << " / "
+      << map.threads << " threads; unconverged: " << map.truth_unconverged[0] << " / "
       << map.truth_unconverged[1] << " / " << map.truth_unconverged[2]
       << "; mean integrand evaluations: " << short_number(map.truth_evaluations[0], 3) << " / "
       << short_number(map.truth_evaluations[1], 3) << " / "
@@ -714,36 +690,50 @@ void print_markdown(std::ostream& out, const Map& map, const Sweep& sweep, const
 
 }  // namespace
 
-void bench_lighting_map(std::ostream& out, const LightingMapOptions& options) {
-  const SweepSpec spec = options.quick ? quick_sweep() : full_sweep();
-  const Sweep sweep = make_sweep(spec);
-  const Map map = measure(sweep, spec, options.threads);
-  if (!options.csv.empty()) write_atomically(options.csv, csv_text(map));
-  if (!options.svg.empty()) write_atomically(options.svg, svg_text(map));
-  print_markdown(out, map, sweep, spec, options.threads);
+LightingSweepSpec lighting_map_sweep(bool quick) {
+  return quick ? quick_sweep() : full_sweep();
 }
 
-void bench_lighting_pixels(std::ostream& out, const std::string& fast_aov,
-                           const std::string& reference) {
-  const ExrImage fast = read_exr(fast_aov);
-  const ExrImage ref = read_exr(reference);
+LightingMap measure_lighting_map(const LightingSweepSpec& spec, int threads) {
+  return measure(make_sweep(spec), spec, threads);
+}
+
+std::string lighting_map_csv(const LightingMap& map) {
+  return csv_text(map);
+}
+
+std::string lighting_map_svg(const LightingMap& map) {
+  return svg_text(map);
+}
+
+std::string lighting_map_markdown(const LightingMap& map) {
+  std::ostringstream out;
+  print_markdown(out, map);
+  return out.str();
+}
+
+void write_text_atomically(const std::string& path, const std::string& text) {
+  write_atomically(path, text);
+}
+
+LightingPixelErrors lighting_pixel_errors(const ExrImage& fast, const ExrImage& ref) {
   if (fast.width != ref.width || fast.height != ref.height) {
-    throw UsageError("REFERENCE", "the images differ in size");
+    throw LightingPixelsInputError(true, "the images differ in size");
   }
   const auto channel = [](const ExrImage& image, const std::string& name,
-                          const std::string& flag) -> const std::vector<float>& {
+                          bool is_reference) -> const std::vector<float>& {
     for (const ExrChannel& c : image.channels) {
       if (c.name == name && c.sampling == 1) return c.values;
     }
-    throw UsageError(flag, "no channel '" + name + "' (render with --aov)");
+    throw LightingPixelsInputError(is_reference, "no channel '" + name + "' (render with --aov)");
   };
-  const std::vector<float>& coverage = channel(fast, "coverage", "FAST_AOV");
+  const std::vector<float>& coverage = channel(fast, "coverage", false);
   const char* names[] = {"R", "G", "B"};
   std::vector<const std::vector<float>*> f, r, e;
   for (const char* n : names) {
-    f.push_back(&channel(fast, n, "FAST_AOV"));
-    r.push_back(&channel(ref, n, "REFERENCE"));
-    e.push_back(&channel(fast, std::string("lighting_error.") + n, "FAST_AOV"));
+    f.push_back(&channel(fast, n, false));
+    r.push_back(&channel(ref, n, true));
+    e.push_back(&channel(fast, std::string("lighting_error.") + n, false));
   }
   std::vector<double> difference, layer;
   for (std::size_t i = 0; i < coverage.size(); ++i) {
@@ -762,19 +752,33 @@ void bench_lighting_pixels(std::ostream& out, const std::string& fast_aov,
     difference.push_back(d);
     layer.push_back(l);
   }
+  LightingPixelErrors result;
+  result.pixels = coverage.size();
+  result.sea_pixels = difference.size();
+  for (auto [v, stats] :
+       {std::pair{&difference, &result.difference}, std::pair{&layer, &result.layer}}) {
+    if (v->empty()) continue;
+    Row row;
+    set_statistics(row, *v);
+    *stats = {row.median, row.p95, row.max};
+  }
+  return result;
+}
+
+std::string lighting_pixels_csv(const LightingPixelErrors& e) {
+  std::ostringstream out;
   out << "sea_pixels,pixels,median,p95,max,layer_median,layer_p95,layer_max\n"
-      << difference.size() << ',' << coverage.size();
-  for (std::vector<double>* v : {&difference, &layer}) {
-    if (v->empty()) {
+      << e.sea_pixels << ',' << e.pixels;
+  for (const LightingPixelErrors::Statistics* s : {&e.difference, &e.layer}) {
+    if (e.sea_pixels == 0) {
       out << ",0,0,0";
       continue;
     }
-    Row stats;
-    set_statistics(stats, *v);
-    out << ',' << format_number(stats.median) << ',' << format_number(stats.p95) << ','
-        << format_number(stats.max);
+    out << ',' << format_number(s->median) << ',' << format_number(s->p95) << ','
+        << format_number(s->max);
   }
   out << '\n';
+  return out.str();
 }
 
-}  // namespace oceanref::cli
+}  // namespace oceanref

@@ -1,12 +1,12 @@
-#include "cli/provenance.h"
+#include "conformance/provenance.h"
 
 #include <cfloat>
 #include <sstream>
 
-#include "cli/build_commit.h"
-#include "cli/build_info.h"
+#include "conformance/build_commit.h"
+#include "conformance/build_info.h"
 
-namespace oceanref::cli {
+namespace oceanref {
 
 std::string oceanref_version() {
   return std::string("oceanref ") + OCEANREF_VERSION;
@@ -33,4 +33,4 @@ std::string version_text() {
   return s.str();
 }
 
-}  // namespace oceanref::cli
+}  // namespace oceanref

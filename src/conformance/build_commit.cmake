@@ -1,4 +1,4 @@
-# Writes OUTPUT (cli/build_commit.h) with the source tree's commit, at build time: run by the
+# Writes OUTPUT (conformance/build_commit.h) with the source tree's commit, at build time: run by the
 # oceanref_build_commit target on every build, it rewrites the header only when the commit or
 # the tree's clean/dirty state changed, so a rebuild with no change recompiles nothing.
 #   cmake -DSOURCE_DIR=… -DOUTPUT=… -P build_commit.cmake
@@ -17,5 +17,5 @@ if(head_status EQUAL 0 AND head)
   endif()
 endif()
 file(CONFIGURE OUTPUT "${OUTPUT}"
-     CONTENT "// Generated at build time by src/cli/build_commit.cmake: the source tree's commit.\n#pragma once\n#define OCEANREF_COMMIT \"@commit@\"\n"
+     CONTENT "// Generated at build time by src/conformance/build_commit.cmake: the source tree's commit.\n#pragma once\n#define OCEANREF_COMMIT \"@commit@\"\n"
      @ONLY)

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace oceanref::cli {
+namespace oceanref {
 
 // "oceanref 0.1.0": the `oceanref.version` attribute of the EXR files.
 std::string oceanref_version();
@@ -15,4 +15,4 @@ std::string oceanref_commit();
 // The whole `oceanref --version` text.
 std::string version_text();
 
-}  // namespace oceanref::cli
+}  // namespace oceanref

@@ -1,0 +1,73 @@
+// The render file (`oceanref render`, docs/FILES.md "The render EXR"): a scene rendered to the
+// EXR image oceanref writes — channels R, G, B and, with AOVs, the layers; provenance, camera
+// matrices and lighting attributes — and its two hashes, the contract the golden suite checks.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/exr.h"
+#include "raster/renderer.h"
+#include "scene/scene.h"
+
+namespace oceanref {
+
+// SHA-256 of the decoded pixel data: R, G, B as float32 little-endian, pixels row-major
+// (`rgb` holds the three channels R, G, B, in this order).
+std::string pixel_sha256(const std::vector<ExrChannel>& rgb);
+// SHA-256 of the double-precision radiance before the float32 conversion: R, G, B as binary64
+// little-endian, pixels row-major. A one-ulp change anywhere in the pipeline that the float32
+// rounding would hide still changes this hash.
+std::string radiance_f64_sha256(const std::vector<Vec3>& radiance);
+
+// A scene ready to render: the scene, its ocean, the job (which points into `ocean`: keep the
+// whole struct where it is) and the unresolved slope variance.
+struct PreparedRender {
+  Scene scene;
+  Ocean ocean;
+  RenderJob job;
+  WindSlopeVariance unresolved;
+};
+// `samples_per_axis` > 0 overrides the scene's; `log` (may be empty) receives progress notes.
+std::unique_ptr<PreparedRender> prepare_render(
+    const Scene& scene, int threads, int samples_per_axis = 0,
+    const std::function<void(const std::string&)>& log = {});
+
+struct RenderOutputOptions {
+  int threads = 1;
+  int samples_per_axis = 0;  // 0: the scene's
+  bool aov = false;          // also the layers (and, for a fast render, its reference error)
+  std::function<void(const std::string&)> log;  // progress notes (may be empty)
+  std::function<void(double)> progress;         // share of the image done (may be empty)
+};
+
+// A scene rendered to the EXR that `render` writes (attributes included) and its pixel hashes.
+struct RenderedScene {
+  ExrImage exr;
+  std::string pixel_sha256;         // the float32 pixels as written
+  std::string radiance_f64_sha256;  // the double radiance behind them
+  RenderedImage image;
+  ImageSettings settings;
+};
+RenderedScene render_scene(const Scene& scene, const RenderOutputOptions& options);
+RenderedScene render_scene(const std::string& path, const RenderOutputOptions& options);
+
+// The estimated lighting error relative to the radiance, over the channels of the pixels that
+// see the sea (`estimated` false when the image carries no estimate).
+struct LightingErrorSummary {
+  bool estimated = false;
+  double max_relative = 0.0;
+  double median_relative = 0.0;
+};
+LightingErrorSummary summarize_lighting_error(const RenderedImage& image);
+
+// The tone-mapped preview (Reinhard 2002 with the scene's key and white, sRGB transfer): 8-bit
+// RGB, row-major; write_preview_png writes it as a PNG.
+std::vector<std::uint8_t> preview_rgb8(const RenderedImage& image, const ImageSettings& settings);
+void write_preview_png(const std::string& path, const RenderedImage& image,
+                       const ImageSettings& settings);
+
+}  // namespace oceanref

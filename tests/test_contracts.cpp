@@ -1,0 +1,231 @@
+// The contracts now in library code: the render file and its two hashes
+// (conformance/render_output.h), the fields file and its hashes (conformance/fields_output.h)
+// and the golden suite (conformance/golden.h), checked without the command line.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "conformance/fields_output.h"
+#include "conformance/golden.h"
+#include "conformance/render_output.h"
+#include "io/sha256.h"
+#include "scene/scene.h"
+
+using namespace oceanref;
+
+namespace {
+// A golden scene of the suite: 48x27 pixels, one cascade of 16², direct interpolation.
+const std::string kTinyGolden = "mastin_spread_direct_tiny";
+
+std::filesystem::path source(const std::string& relative) {
+  return std::filesystem::path(OCEANREF_SOURCE_DIR) / relative;
+}
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+void write_json(const std::filesystem::path& path, const nlohmann::json& j) {
+  std::ofstream out(path);
+  out << j.dump(2) << '\n';
+}
+
+// A reference folder holding one scene of the golden suite and its manifest entry.
+std::filesystem::path golden_copy(const std::string& folder, const std::string& name) {
+  const auto root = std::filesystem::temp_directory_path() / folder;
+  std::filesystem::remove_all(root);
+  std::filesystem::create_directories(root / "golden");
+  std::filesystem::create_directories(root / "scenes" / "golden");
+  const nlohmann::json manifest = read_json(source("reference/golden/manifest.json"));
+  nlohmann::json copy = manifest;
+  copy["entries"] = nlohmann::json::array();
+  for (const auto& e : manifest.at("entries")) {
+    if (e.at("name") == name) copy["entries"].push_back(e);
+  }
+  REQUIRE(copy["entries"].size() == 1);
+  std::filesystem::copy_file(source("reference/scenes/golden/" + name + ".json"),
+                             root / "scenes" / "golden" / (name + ".json"));
+  for (const char* suffix : {".exr", ".fields.exr"}) {
+    std::filesystem::copy_file(source("reference/golden/" + name + suffix),
+                               root / "golden" / (name + suffix));
+  }
+  write_json(root / "golden" / "manifest.json", copy);
+  return root;
+}
+
+// The hash definitions of docs/FILES.md, written out independently of the library's.
+std::string rgb_float32_hash(const ExrImage& exr) {
+  std::vector<std::uint8_t> bytes;
+  const std::size_t n = exr.channels[0].values.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &exr.channels[c].values[i], 4);
+      for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * b)));
+    }
+  }
+  return sha256_hex(bytes);
+}
+}  // namespace
+
+TEST_CASE("render file: channels, attributes and the two hashes as docs/FILES.md defines them") {
+  const Scene scene = load_scene(source("reference/scenes/golden/" + kTinyGolden + ".json"));
+  RenderOutputOptions options;
+  options.threads = 2;
+  const RenderedScene r = render_scene(scene, options);
+  REQUIRE(r.exr.channels.size() == 3);
+  CHECK(r.exr.channels[0].name == "R");
+  CHECK(r.exr.channels[2].name == "B");
+  CHECK(r.exr.width == 48);
+  CHECK(r.exr.height == 27);
+  // The float32 pixel hash, recomputed from the channels here.
+  CHECK(r.pixel_sha256 == rgb_float32_hash(r.exr));
+  CHECK(r.exr.attributes.at("oceanref.pixel_sha256") == r.pixel_sha256);
+  CHECK(r.exr.attributes.at("oceanref.radiance_f64_sha256") == r.radiance_f64_sha256);
+  CHECK(r.exr.attributes.at("oceanref.scene_sha256") == sha256_hex(scene.canonical));
+  CHECK(r.exr.matrices.count("worldToCamera") == 1);
+  CHECK(r.exr.matrices.count("worldToNDC") == 1);
+  // The golden suite's stored hashes for this scene.
+  const nlohmann::json manifest = read_json(source("reference/golden/manifest.json"));
+  for (const auto& e : manifest.at("entries")) {
+    if (e.at("name") != kTinyGolden) continue;
+    CHECK(e.at("pixel_sha256") == r.pixel_sha256);
+    CHECK(e.at("radiance_f64_sha256") == r.radiance_f64_sha256);
+  }
+  // A one-ulp change of one radiance value changes the f64 hash, not necessarily the float32 one.
+  std::vector<Vec3> changed = r.image.radiance;
+  changed[7][1] = std::nextafter(changed[7][1], 1e300);
+  CHECK(radiance_f64_sha256(changed) != r.radiance_f64_sha256);
+  CHECK(radiance_f64_sha256(r.image.radiance) == r.radiance_f64_sha256);
+
+  {  // AOVs add the layers, not the pixels
+    options.aov = true;
+    const RenderedScene a = render_scene(scene, options);
+    CHECK(a.pixel_sha256 == r.pixel_sha256);
+    std::set<std::string> names;
+    for (const ExrChannel& c : a.exr.channels) names.insert(c.name);
+    for (const char* n : {"sun.R", "sky.G", "sea.B", "foam.R", "normal.G", "x0.B", "depth",
+                          "coverage", "lighting_error.R"}) {
+      CHECK(names.count(n) == 1);
+    }
+    CHECK(a.exr.channels.size() == 3 + 6 * 3 + 2 + 3);
+  }
+}
+
+TEST_CASE("fields file: parts, unique channel names, hashes of the doubles and the floats") {
+  const Scene scene = load_scene(source("reference/scenes/golden/" + kTinyGolden + ".json"));
+  const Ocean ocean = realize_ocean(scene.waves, 2);
+  const FieldsImage f = fields_image(scene, ocean, 2);
+  // One cascade on one grid: parts c0 and sum.
+  REQUIRE(f.parts.size() == 2);
+  CHECK(f.parts[0].name == "c0");
+  CHECK(f.parts[1].name == "sum");
+  std::set<std::string> names;
+  std::size_t channels = 0;
+  for (const ExrPart& p : f.parts) {
+    CHECK(p.image.attributes.at("oceanref.scene_sha256") == sha256_hex(scene.canonical));
+    for (const ExrChannel& c : p.image.channels) {
+      names.insert(c.name);
+      ++channels;
+      CHECK(p.image.attributes.count("oceanref.units." + c.name) == 1);
+    }
+  }
+  CHECK(names.size() == channels);
+  // The float32 hash, written out: every channel in name order, its name, a zero byte, its
+  // values as binary32 little-endian.
+  std::vector<std::uint8_t> bytes;
+  for (const std::string& name : names) {
+    bytes.insert(bytes.end(), name.begin(), name.end());
+    bytes.push_back(0);
+    for (const ExrPart& p : f.parts) {
+      for (const ExrChannel& c : p.image.channels) {
+        if (c.name != name) continue;
+        for (const float v : c.values) append_bytes(bytes, v);
+      }
+    }
+  }
+  CHECK(sha256_hex(bytes) == f.sha256);
+  const nlohmann::json manifest = read_json(source("reference/golden/manifest.json"));
+  for (const auto& e : manifest.at("entries")) {
+    if (e.at("name") != kTinyGolden) continue;
+    CHECK(e.at("fields_sha256") == f.sha256);
+    CHECK(e.at("fields_f64_sha256") == f.f64_sha256);
+  }
+  // At a grid node the FFT and the direct sum agree to rounding (rows of every field).
+  const std::vector<PointFieldRow> rows = fields_at_point(scene, ocean, 0.0, 0.0, 2);
+  CHECK(rows.size() == kFieldNames.size() + 8);
+  for (const PointFieldRow& r : rows) {
+    if (r.cascade != "0") continue;
+    CHECK(std::fabs(r.fft - r.direct) <= 1e-9 * (1.0 + std::fabs(r.direct)));
+  }
+}
+
+TEST_CASE("golden suite: verify passes on a copy, fails naming the hash after a change") {
+  const auto root = golden_copy("oceanref_test_golden", kTinyGolden);
+  const auto manifest_path = root / "golden" / "manifest.json";
+  GoldenOptions options;
+  options.threads = 2;
+  // Bad input names the option, before anything is rendered.
+  options.only = {"no_such_scene"};
+  CHECK_THROWS_AS(verify_golden(root, options), GoldenInputError);
+  options.only = {kTinyGolden};
+  try {
+    verify_golden(root / "missing", options);
+    FAIL("no error");
+  } catch (const GoldenInputError& e) {
+    CHECK(e.option() == "root");
+  }
+
+  const GoldenReport ok = verify_golden(root, options);
+  REQUIRE(ok.scenes.size() == 1);
+  CHECK(ok.pass());
+  CHECK(ok.scenes[0].status == "identical");
+  CHECK(ok.scenes[0].differs.empty());
+  CHECK(golden_text(ok) == "name,status,pixel_sha256\n" + kTinyGolden + ",identical," +
+                               ok.scenes[0].pixel_sha256 + "\n");
+
+  // A stored hash altered: that key, and only it, differs.
+  const nlohmann::json stored = read_json(manifest_path);
+  nlohmann::json m = stored;
+  m["entries"][0]["fields_sha256"] = std::string(64, '0');
+  write_json(manifest_path, m);
+  const GoldenReport bad_hash = verify_golden(root, options);
+  CHECK_FALSE(bad_hash.pass());
+  CHECK(bad_hash.mismatches == 1);
+  CHECK(bad_hash.scenes[0].status == "MISMATCH");
+  CHECK(bad_hash.scenes[0].differs == std::vector<std::string>{"fields_sha256"});
+  CHECK(golden_text(bad_hash).find("# differs: fields_sha256\n") != std::string::npos);
+  write_json(manifest_path, stored);
+
+  // The scene altered (another seed; fast lighting to keep the test short): every hash differs
+  // and the stored image is compared with the new one.
+  const auto scene_path = root / "scenes" / "golden" / (kTinyGolden + ".json");
+  nlohmann::json s = read_json(scene_path);
+  s["seed"] = 20;
+  s["shading"]["accuracy"] = "fast";
+  write_json(scene_path, s);
+  const GoldenReport bad_scene = verify_golden(root, options);
+  CHECK_FALSE(bad_scene.pass());
+  CHECK(bad_scene.scenes[0].differs.size() == 4);
+  CHECK(bad_scene.scenes[0].comparison.find("result: fail") != std::string::npos);
+
+  // Update rewrites the manifest (no temporary left behind) and the files; verify then passes.
+  const GoldenReport updated = update_golden(root, options);
+  CHECK(updated.pass());
+  CHECK(updated.scenes[0].status == "updated");
+  CHECK_FALSE(std::filesystem::exists(manifest_path.string() + ".tmp"));
+  const nlohmann::json rewritten = read_json(manifest_path);
+  CHECK(rewritten["entries"][0]["pixel_sha256"] == updated.scenes[0].pixel_sha256);
+  CHECK(rewritten["entries"][0]["pixel_sha256"] != ok.scenes[0].pixel_sha256);
+  CHECK(rewritten["entries"][0]["lighting_accuracy"].get<std::string>().rfind("fast", 0) == 0);
+  CHECK(verify_golden(root, options).pass());
+  std::filesystem::remove_all(root);
+}
