@@ -221,6 +221,29 @@ printf '{"waves": {}, "camera": {"position": [0, 1, 0], "look_at": [0, 1, 0]}}' 
 expect 2 'camera: camera: look_at equals position' render "$tmp/bad.json" -o "$tmp/x.exr"
 [ ! -e "$tmp/x.exr" ] || fail "a failed render left an output file"
 
+# The preview's tone-mapping keys reach the PNG (and only the PNG: the pixel hash is the same).
+for key in 'tone_key": 0.5' 'tone_white": 3'; do
+  sed "s/\"samples_per_pixel\": 4}/\"samples_per_pixel\": 4, \"${key}}/" "$tmp/render.json" >"$tmp/tone.json"
+  grep -q "$key" "$tmp/tone.json" || fail "tone test scene not written"
+  expect 0 '^pixel_sha256' render "$tmp/tone.json" -o "$tmp/tone.exr" --png "$tmp/tone.png" --threads 2
+  [ "$(cat "$tmp/out")" = "$hash1" ] || fail "render.$key changed the pixel hash (preview only)"
+  cmp -s "$tmp/tone.png" "$tmp/r1.png" && fail "render.${key%%\"*} did not change the PNG preview"
+done
+# waves.realization reaches the renderer: mastin and gaussian render different pixels.
+sed 's/"choppiness": -0.8}/"choppiness": -0.8, "realization": "mastin"}/' "$tmp/render.json" >"$tmp/rmastin.json"
+expect 0 '^pixel_sha256' render "$tmp/rmastin.json" -o "$tmp/rmastin.exr" --threads 2
+[ "$(cat "$tmp/out")" != "$hash1" ] || fail "waves.realization mastin renders the gaussian pixels"
+# A key that does nothing for the scene: one warning naming the file and the JSON path (pbrt-v4's
+# ReportUnused), and the command still succeeds.
+printf '{"waves": {"spectrum": {"model": "phillips", "fetch": 5000}, "resolution": 8}}' >"$tmp/unused.json"
+expect 0 '^cascade,field' fields "$tmp/unused.json" --at 0,0
+checks=$((checks + 1))
+grep -Eq "^oceanref: warning: .*unused.json: waves.spectrum.fetch has no effect in this scene \(the phillips spectrum has no fetch\)$" "$tmp/err" ||
+  fail "no unused-key warning for waves.spectrum.fetch: $(cat "$tmp/err")"
+expect 0 '^cascade,field' fields "$tmp/scene.json" --at 0,0
+checks=$((checks + 1))
+grep -q 'warning' "$tmp/err" && fail "a warning for a scene that uses every key: $(cat "$tmp/err")"
+
 # --- compare ------------------------------------------------------------------------------------
 expect 0 '^result: pass' compare "$tmp/r2.exr" "$tmp/r1.exr"
 "$bin" render "$tmp/render.json" -o "$tmp/r_spp1.exr" --spp 1 >/dev/null

@@ -1,7 +1,9 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -13,6 +15,78 @@
 #include "shading/reference_lighting.h"
 
 namespace oceanref {
+
+const std::vector<std::string>& scene_key_paths() {
+  static const std::vector<std::string> paths{
+      "seed",
+      "time",
+      "waves.spectrum.model",
+      "waves.spectrum.wind_speed",
+      "waves.spectrum.wind_direction_deg",
+      "waves.spectrum.fetch",
+      "waves.spectrum.depth",
+      "waves.spectrum.gravity",
+      "waves.spectrum.gamma",
+      "waves.spectrum.alpha",
+      "waves.spectrum.peak_omega",
+      "waves.spectrum.sigma_low",
+      "waves.spectrum.sigma_high",
+      "waves.spectrum.pm_wind",
+      "waves.spectrum.tma_attenuation",
+      "waves.spectrum.phillips_suppression",
+      "waves.spectrum.allow_extrapolation",
+      "waves.spreading.model",
+      "waves.spreading.swell",
+      "waves.spreading.spread_blend",
+      "waves.spreading.printed",
+      "waves.dispersion",
+      "waves.cascades.sizes",
+      "waves.cascades.largest",
+      "waves.cascades.count",
+      "waves.cascades.factor",
+      "waves.resolution",
+      "waves.low_resolution",
+      "waves.choppiness",
+      "waves.allow_positive_choppiness",
+      "waves.band_partitioning",
+      "waves.minimum_wavelength",
+      "waves.foam.decay",
+      "waves.foam.time_step",
+      "waves.foam.steps",
+      "waves.realization",
+      "camera.position",
+      "camera.look_at",
+      "camera.up",
+      "camera.vertical_fov_deg",
+      "grid.columns",
+      "grid.rows",
+      "grid.margin",
+      "atmosphere.sun_zenith_deg",
+      "atmosphere.sun_azimuth_deg",
+      "atmosphere.turbidity",
+      "shading.sun",
+      "shading.sky",
+      "shading.sea",
+      "shading.whitecaps",
+      "shading.fresnel",
+      "shading.erfc",
+      "shading.accuracy",
+      "shading.tolerance",
+      "shading.sky_order",
+      "shading.sun_order",
+      "shading.sea_colour",
+      "shading.foam_albedo",
+      "shading.whitecap_threshold",
+      "shading.interpolation",
+      "shading.normals",
+      "render.width",
+      "render.height",
+      "render.samples_per_pixel",
+      "render.tone_key",
+      "render.tone_white",
+  };
+  return paths;
+}
 
 namespace {
 using json = nlohmann::json;
@@ -28,20 +102,35 @@ std::string shortest(double v) {
   return s.str();
 }
 
-// A JSON object whose keys are checked against the accepted set.
+// The keys of the object at `path` ("" for the top level): the next component of every key path
+// under it, in the order of scene_key_paths(); the top level also holds `objects` (rejected as
+// not supported yet).
+std::vector<std::string> section_keys(const std::string& path) {
+  std::vector<std::string> keys;
+  const std::string prefix = path.empty() ? "" : path + ".";
+  for (const std::string& k : scene_key_paths()) {
+    if (k.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string rest = k.substr(prefix.size());
+    const std::string child = rest.substr(0, rest.find('.'));
+    if (std::find(keys.begin(), keys.end(), child) == keys.end()) keys.push_back(child);
+  }
+  if (path.empty()) keys.push_back("objects");
+  return keys;
+}
+
+// A JSON object whose keys are checked against the accepted set (section_keys of its path).
 struct Section {
   const json& value;
   std::string path;
 
-  Section(const json& v, std::string p, std::initializer_list<const char*> keys)
-      : value(v), path(std::move(p)) {
+  Section(const json& v, std::string p) : value(v), path(std::move(p)) {
     if (!value.is_object())
       throw SceneError(path.empty() ? "(top level)" : path, "expected an object");
-    const std::set<std::string> accepted(keys.begin(), keys.end());
+    const std::vector<std::string> keys = section_keys(path);
     for (const auto& item : value.items()) {
-      if (!accepted.count(item.key())) {
+      if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
         std::string list;
-        for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+        for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
         throw SceneError(join(path, item.key()), "unknown key (accepted: " + list + ")");
       }
     }
@@ -177,8 +266,7 @@ SpectrumSettings parse_spectrum(const Section& spectrum, const Section* spreadin
 
 std::vector<double> parse_sizes(const Section& waves) {
   if (!waves.has("cascades")) return {1000.0};
-  const Section c(waves.at("cascades"), waves.where("cascades"),
-                  {"sizes", "largest", "count", "factor"});
+  const Section c(waves.at("cascades"), waves.where("cascades"));
   if (c.has("sizes")) {
     if (c.has("largest") || c.has("count") || c.has("factor")) {
       throw SceneError(c.path, "give either sizes or largest/count/factor, not both");
@@ -277,30 +365,24 @@ glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, doubl
 
 void parse_rendering(const Section& top, Scene& scene) {
   const json empty = json::object();
-  const Section camera(top.has("camera") ? top.at("camera") : empty, "camera",
-                       {"position", "look_at", "up", "vertical_fov_deg"});
+  const Section camera(top.has("camera") ? top.at("camera") : empty, "camera");
   CameraSettings& c = scene.camera;
   c.position = vector3(camera, "position", c.position, 1e6);
   c.look_at = vector3(camera, "look_at", c.look_at, 1e7);
   c.up = vector3(camera, "up", c.up, 1e3);
   c.vertical_fov_deg =
       camera.number("vertical_fov_deg", c.vertical_fov_deg, 1.0, 170.0, " degrees");
-  const Section grid(top.has("grid") ? top.at("grid") : empty, "grid",
-                     {"columns", "rows", "margin"});
+  const Section grid(top.has("grid") ? top.at("grid") : empty, "grid");
   scene.grid.columns = grid.integer("columns", 512, 2, 8192);
   scene.grid.rows = grid.integer("rows", 512, 2, 8192);
   scene.grid.margin = grid.number("margin", 0.1, 0.0, 1.0);
-  const Section atmosphere(top.has("atmosphere") ? top.at("atmosphere") : empty, "atmosphere",
-                           {"sun_zenith_deg", "sun_azimuth_deg", "turbidity"});
+  const Section atmosphere(top.has("atmosphere") ? top.at("atmosphere") : empty, "atmosphere");
   AtmosphereSettings& a = scene.atmosphere;
   a.sun_zenith_deg = atmosphere.number("sun_zenith_deg", a.sun_zenith_deg, 0.0, 180.0, " degrees");
   a.sun_azimuth_deg =
       atmosphere.number("sun_azimuth_deg", a.sun_azimuth_deg, -720.0, 720.0, " degrees");
   a.turbidity = atmosphere.number("turbidity", a.turbidity, kMinTurbidity, kMaxTurbidity);
-  const Section shading(
-      top.has("shading") ? top.at("shading") : empty, "shading",
-      {"sun", "sky", "sea", "whitecaps", "fresnel", "erfc", "accuracy", "tolerance", "sky_order",
-       "sun_order", "sea_colour", "foam_albedo", "whitecap_threshold", "interpolation", "normals"});
+  const Section shading(top.has("shading") ? top.at("shading") : empty, "shading");
   ShadingSettings& h = scene.shading;
   h.sun = shading.boolean("sun", true);
   h.sky = shading.boolean("sky", true);
@@ -369,8 +451,7 @@ void parse_rendering(const Section& top, Scene& scene) {
                      "(the slopes of the N_h bands, Gamper 4.4); got '" +
                          normals + "'");
   }
-  const Section render(top.has("render") ? top.at("render") : empty, "render",
-                       {"width", "height", "samples_per_pixel", "tone_key", "tone_white"});
+  const Section render(top.has("render") ? top.at("render") : empty, "render");
   ImageSettings& im = scene.image;
   im.width = render.integer("width", im.width, 1, 16384);
   im.height = render.integer("height", im.height, 1, 16384);
@@ -396,13 +477,160 @@ void parse_rendering(const Section& top, Scene& scene) {
     throw SceneError("camera", e.what());
   }
 }
+
+// Whether the key at a dotted path is present in the document.
+bool present(const json& document, const std::string& path) {
+  const json* node = &document;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? dot : dot - start);
+    if (!node->is_object() || !node->contains(key)) return false;
+    node = &node->at(key);
+    if (dot == std::string::npos) return true;
+    start = dot + 1;
+  }
+}
+
+bool any_choppiness(const WaveSettings& w, bool positive_only) {
+  for (const double u : w.choppiness) {
+    if (positive_only ? u > 0.0 : u != 0.0) return true;
+  }
+  return false;
+}
+
+// A key that a scene may hold without it changing anything: `inert` gives the reason for this
+// scene, or "" when the scene consumes it. Keys without a rule are consumed whenever present.
+// tests/test_settings_reach.cpp checks every reason: with it, changing the key changes nothing.
+struct KeyUse {
+  const char* path;
+  std::string (*inert)(const Scene&);
+};
+
+std::string foam_inert(const Scene& s) {
+  if (!any_choppiness(s.waves, false)) {
+    return "no cascade has choppiness: the Jacobian is 1 everywhere and there is no foam";
+  }
+  return "";
+}
+std::string foam_sequence_inert(const Scene& s) {
+  const std::string none = foam_inert(s);
+  if (!none.empty()) return none;
+  return s.foam.steps == 0 ? "waves.foam.steps is 0 (the instantaneous foam indicator)" : "";
+}
+
+const std::vector<KeyUse>& key_uses() {
+  static const std::vector<KeyUse> uses{
+      {"waves.spectrum.fetch",
+       [](const Scene& s) -> std::string {
+         const SpectrumSettings& w = s.waves.spectrum;
+         if (w.model == SpectrumModel::pierson_moskowitz || w.model == SpectrumModel::phillips) {
+           return "the " + std::string(to_string(w.model)) + " spectrum has no fetch";
+         }
+         if ((w.model == SpectrumModel::jonswap || w.model == SpectrumModel::tma) && w.alpha &&
+             w.peak_frequency) {
+           return "alpha and peak_omega are both given, so the fetch laws are not used";
+         }
+         return "";
+       }},
+      {"waves.spectrum.depth",
+       [](const Scene& s) -> std::string {
+         const SpectrumSettings& w = s.waves.spectrum;
+         const DispersionKind d = w.dispersion.value_or(default_dispersion(w.model));
+         if (w.model != SpectrumModel::tma && d == DispersionKind::deep) {
+           return "the spectrum is not tma and the dispersion is deep";
+         }
+         return "";
+       }},
+      {"waves.spectrum.pm_wind",
+       [](const Scene& s) -> std::string {
+         const SpectrumSettings& w = s.waves.spectrum;
+         if (w.model != SpectrumModel::pierson_moskowitz) {
+           return "applies to the pierson-moskowitz spectrum only";
+         }
+         return w.peak_frequency ? "peak_omega is given, so the wind law of the peak is not used"
+                                 : "";
+       }},
+      {"waves.spectrum.tma_attenuation",
+       [](const Scene& s) -> std::string {
+         return s.waves.spectrum.model == SpectrumModel::tma ? ""
+                                                             : "applies to the tma spectrum only";
+       }},
+      {"waves.spectrum.phillips_suppression",
+       [](const Scene& s) -> std::string {
+         return s.waves.spectrum.model == SpectrumModel::phillips
+                    ? ""
+                    : "applies to the phillips spectrum only";
+       }},
+      {"waves.spectrum.allow_extrapolation",
+       [](const Scene& s) -> std::string {
+         SpectrumSettings w = s.waves.spectrum;
+         if (!w.allow_extrapolation) return "";
+         w.allow_extrapolation = false;
+         try {
+           (void)make_spectrum(w);
+         } catch (const SettingError&) {
+           return "";
+         }
+         return "no parameter is outside its fitted range";
+       }},
+      {"waves.spreading.printed",
+       [](const Scene& s) -> std::string {
+         const SpectrumSettings& w = s.waves.spectrum;
+         const SpreadingModel m = w.spreading.value_or(default_spreading(w.model));
+         if (m == SpreadingModel::cos2 || m == SpreadingModel::cos4 ||
+             m == SpreadingModel::donelan) {
+           return "";
+         }
+         return "applies to the cos2, cos4 and donelan spreading only, not " +
+                std::string(to_string(m));
+       }},
+      {"waves.cascades.factor",
+       [](const Scene& s) -> std::string {
+         return s.waves.sizes.size() == 1 ? "there is one cascade (count 1)" : "";
+       }},
+      {"waves.allow_positive_choppiness",
+       [](const Scene& s) -> std::string {
+         return any_choppiness(s.waves, true) ? "" : "no cascade has positive choppiness";
+       }},
+      {"waves.foam.steps", foam_inert},
+      {"waves.foam.decay", foam_sequence_inert},
+      {"waves.foam.time_step", foam_sequence_inert},
+      {"shading.sea_colour",
+       [](const Scene& s) -> std::string { return s.shading.sea ? "" : "shading.sea is false"; }},
+      {"shading.foam_albedo",
+       [](const Scene& s) -> std::string {
+         return s.shading.whitecaps ? "" : "shading.whitecaps is false";
+       }},
+      {"shading.whitecap_threshold",
+       [](const Scene& s) -> std::string {
+         return s.shading.whitecaps ? "" : "shading.whitecaps is false";
+       }},
+      {"shading.sun_order",
+       [](const Scene& s) -> std::string { return s.shading.sun ? "" : "shading.sun is false"; }},
+      {"shading.sky_order",
+       [](const Scene& s) -> std::string {
+         // The rule also averages the Fresnel factor F̄ of the sea term.
+         return s.shading.sky || s.shading.sea ? "" : "shading.sky and shading.sea are false";
+       }},
+  };
+  return uses;
+}
+
+std::vector<UnusedKey> unused_keys(const json& document, const Scene& scene) {
+  std::vector<UnusedKey> unused;
+  for (const KeyUse& use : key_uses()) {
+    if (!present(document, use.path)) continue;
+    std::string reason = use.inert(scene);
+    if (!reason.empty()) unused.push_back({use.path, std::move(reason)});
+  }
+  return unused;
+}
 }  // namespace
 
 Scene parse_scene(const json& document) {
   const ReferenceFpEnvironment fp;
-  const Section top(
-      document, "",
-      {"seed", "time", "waves", "camera", "grid", "atmosphere", "shading", "render", "objects"});
+  const Section top(document, "");
   if (top.has("objects")) {
     throw SceneError("objects",
                      "this section is not supported yet by this version of oceanref "
@@ -417,20 +645,12 @@ Scene parse_scene(const json& document) {
   }
   scene.time = top.number("time", 0.0, -1e7, 1e7, " s");
   if (!top.has("waves")) throw SceneError("waves", "missing: the scene needs a waves section");
-  const Section waves(top.at("waves"), "waves",
-                      {"spectrum", "spreading", "dispersion", "cascades", "resolution",
-                       "low_resolution", "choppiness", "allow_positive_choppiness",
-                       "band_partitioning", "minimum_wavelength", "foam", "realization"});
+  const Section waves(top.at("waves"), "waves");
   const json empty = json::object();
-  const Section spectrum(waves.has("spectrum") ? waves.at("spectrum") : empty, "waves.spectrum",
-                         {"model", "wind_speed", "wind_direction_deg", "fetch", "depth", "gravity",
-                          "gamma", "alpha", "peak_omega", "sigma_low", "sigma_high", "pm_wind",
-                          "tma_attenuation", "phillips_suppression", "allow_extrapolation"});
+  const Section spectrum(waves.has("spectrum") ? waves.at("spectrum") : empty, "waves.spectrum");
   std::optional<Section> spreading;
   if (waves.has("spreading")) {
-    spreading.emplace(
-        waves.at("spreading"), "waves.spreading",
-        std::initializer_list<const char*>{"model", "swell", "spread_blend", "printed"});
+    spreading.emplace(waves.at("spreading"), "waves.spreading");
   }
   WaveSettings& w = scene.waves;
   w.seed = scene.seed;
@@ -461,7 +681,7 @@ Scene parse_scene(const json& document) {
   w.minimum_wavelength = waves.number(
       "minimum_wavelength", default_minimum_wavelength(w.spectrum.model), 0.0, 100.0, " m");
   if (waves.has("foam")) {
-    const Section foam(waves.at("foam"), "waves.foam", {"decay", "time_step", "steps"});
+    const Section foam(waves.at("foam"), "waves.foam");
     scene.foam.decay = foam.number("decay", scene.foam.decay, 0.0, 1e3, " per second");
     scene.foam.time_step = foam.number("time_step", scene.foam.time_step, 1e-4, 10.0, " s");
     scene.foam.steps = foam.integer("steps", 0, 0, 10000);
@@ -479,6 +699,7 @@ Scene parse_scene(const json& document) {
     throw SceneError(spectrum_path(e.key()), e.what());
   }
   parse_rendering(top, scene);
+  scene.unused = unused_keys(document, scene);
   scene.canonical = document.dump();
   return scene;
 }
@@ -509,7 +730,7 @@ Sky scene_sky(const Scene& s) {
                   s.atmosphere.sun_azimuth_deg * deg);
 }
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, std::ostream* warnings) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path, "cannot open the scene file");
   json document;
@@ -518,7 +739,18 @@ Scene load_scene(const std::string& path) {
   } catch (const json::exception& e) {  // syntax errors and numbers out of range
     throw SceneError(path, std::string("not valid JSON: ") + e.what());
   }
-  return parse_scene(document);
+  Scene scene = parse_scene(document);
+  if (warnings != nullptr) {
+    for (const UnusedKey& u : scene.unused) {
+      *warnings << "oceanref: warning: " << path << ": " << u.path
+                << " has no effect in this scene (" << u.reason << ")\n";
+    }
+  }
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  return load_scene(path, &std::cerr);
 }
 
 }  // namespace oceanref

@@ -1,14 +1,16 @@
 // Scene files (DESIGN.md, "Scene files"): JSON validated strictly — unknown keys, wrong types,
 // non-finite numbers, out-of-range values and sizes over the memory cap are rejected with the
-// JSON path of the key. This version reads the sections `seed`, `time` and `waves`; the other
-// sections of the contract (camera, grid, atmosphere, shading, render, objects) are rejected as
-// not yet supported rather than silently ignored. Sections: seed, time, waves, camera, grid,
-// atmosphere, shading, render (objects is not supported yet).
+// JSON path of the key. Sections: seed, time, waves, camera, grid, atmosphere, shading, render
+// (objects is rejected as not supported yet). A valid key that does nothing for the scene is
+// reported (Scene::unused, warnings of load_scene); tests/test_settings_reach.cpp checks that
+// every other key changes the output.
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -49,6 +51,14 @@ struct ImageSettings {
   double tone_white = 0.0;   // L_white for the preview; 0: the largest scaled luminance
 };
 
+// A key present in a scene file that does nothing for this scene (pbrt-v4's ReportUnused): e.g.
+// a setting of a spectrum or mode the scene does not select. Keys of the other lighting mode,
+// and spectrum parameters of another model, are errors instead (see parse_scene).
+struct UnusedKey {
+  std::string path;    // JSON path, e.g. "waves.spectrum.fetch"
+  std::string reason;  // why it has no effect, e.g. "the phillips spectrum has no fetch"
+};
+
 struct Scene {
   std::uint64_t seed = 1;
   double time = 0.0;  // s
@@ -59,8 +69,14 @@ struct Scene {
   AtmosphereSettings atmosphere;
   ShadingSettings shading;
   ImageSettings image;
-  std::string canonical;  // the parsed document, dumped canonically (sorted keys): hashed
+  std::string canonical;          // the parsed document, dumped canonically (sorted keys): hashed
+  std::vector<UnusedKey> unused;  // present keys without effect here, in scene_key_paths order
 };
+
+// The JSON path of every setting a scene file accepts (leaves, e.g. "waves.spectrum.fetch"), in
+// document order: the parser's accepted keys of each object are derived from this list (the top
+// level also holds `objects`, rejected as not supported yet).
+const std::vector<std::string>& scene_key_paths();
 
 // The camera and sky of a scene (the validated settings resolved).
 Camera scene_camera(const Scene& scene);
@@ -72,7 +88,10 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads);
 inline constexpr double kWaveMemoryCap = 8.0 * 1024 * 1024 * 1024;
 
 Scene parse_scene(const nlohmann::json& document);
-// Reads and parses a scene file; errors name the file (parse errors) or the JSON path.
+// Reads and parses a scene file; errors name the file (parse errors) or the JSON path. Each key
+// without effect (Scene::unused) is reported as one warning line on `warnings` (nullptr: none);
+// the one-argument form reports on std::cerr.
+Scene load_scene(const std::string& path, std::ostream* warnings);
 Scene load_scene(const std::string& path);
 
 }  // namespace oceanref

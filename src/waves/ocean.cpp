@@ -26,17 +26,21 @@ Ocean realize_ocean(const WaveSettings& settings, int threads) {
       cascade_bands(settings.sizes, settings.low_resolution, settings.band_partitioning, k_max);
   const int count = static_cast<int>(settings.sizes.size());
   ocean.cascades.resize(settings.sizes.size());
+  // h0 of one pattern by the scene's realization (one thread inside: the cascades are the
+  // parallel loop, and the Mastin transform is the same for any thread count).
+  const auto realize = [&](const Pattern& p) {
+    return settings.realization == Realization::mastin
+               ? realize_pattern_mastin(ocean.spectrum, settings.seed, p, 1)
+               : realize_pattern(ocean.spectrum, settings.seed, p);
+  };
   parallel_for(count, threads, [&](int i) {
     const auto c = static_cast<std::size_t>(i);
     const auto index = static_cast<std::uint32_t>(i);
     CascadeSpectra& out = ocean.cascades[c];
-    out.high = realize_pattern(ocean.spectrum, settings.seed,
-                               {index, settings.sizes[c], settings.resolution, high_bands[c]});
-    out.low =
-        settings.low_resolution == settings.resolution
-            ? out.high
-            : realize_pattern(ocean.spectrum, settings.seed,
-                              {index, settings.sizes[c], settings.low_resolution, low_bands[c]});
+    out.high = realize({index, settings.sizes[c], settings.resolution, high_bands[c]});
+    out.low = settings.low_resolution == settings.resolution
+                  ? out.high
+                  : realize({index, settings.sizes[c], settings.low_resolution, low_bands[c]});
     out.choppiness = settings.choppiness[c];
   });
   return ocean;

@@ -47,7 +47,8 @@ struct Ocean {
 // λ_min for a spectrum: 0 for Unified (it models capillary waves), 1.73 cm otherwise.
 double default_minimum_wavelength(SpectrumModel model);
 
-// Resolves the spectrum and realizes every cascade at both resolutions (cascade i keys its draws
+// Resolves the spectrum and realizes every cascade at both resolutions by settings.realization
+// (eq. 4.2, or Mastin's filtered white noise, waves/mastin.h; cascade i keys its draws
 // with index i). Throws SettingError for invalid spectrum settings.
 Ocean realize_ocean(const WaveSettings& settings, int threads);
 

@@ -30,7 +30,7 @@ struct StageChannel {
 // The channels of one stage (not `fields`) on the grid of `s`:
 //   spectrum: theta = Θ(k) [m^4] at every entry (0 at k = 0); variance = Θ(k)Δk² [m^2] where h0
 //             is drawn (k ≠ 0 inside the pattern's band), else 0; in_band = 1 there, else 0;
-//   h0:       h0.re, h0.im [m] (eq. 4.2, the frozen draw of realize_pattern);
+//   h0:       h0.re, h0.im [m] (the frozen draw of realize_ocean: eq. 4.2 or Mastin's filter);
 //   omega:    omega = ω(|k|) [rad/s] from the dispersion relation, kx, kz, k [rad/m];
 //   hkt:      hkt.re, hkt.im [m] = ½h0(k)e^{−iωt} + ½h0(−k)* e^{iωt} (eq. 4.7) at `time` [s].
 // Throws std::invalid_argument for Stage::fields.
