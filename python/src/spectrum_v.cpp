@@ -46,8 +46,9 @@ SpectrumSettings settings_from(const std::string& model_name, const py::kwargs& 
                             model_name + "'");
   }
   s.model = *model;
-  for (const auto& [key_handle, value] : kw) {
-    const std::string key = py::str(key_handle);
+  for (const auto& item : kw) {  // no structured binding: clang 15 cannot capture one
+    const std::string key = py::str(item.first);
+    const py::handle value = item.second;
     if (value.is_none()) continue;  // the model's own value
     const auto text = [&]() { return std::string(py::str(value)); };
     if (key == "wind_speed") {

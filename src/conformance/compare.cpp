@@ -706,8 +706,8 @@ std::string comparison_text(const Comparison& c) {
       if (r.threshold.allowed_share > 0) out << " S=" << short_number(r.threshold.allowed_share);
       if (!r.worst.empty()) {
         out << "   " << r.worst[0].x << "," << r.worst[0].y << " (g "
-            << short_number(r.worst[0].golden) << ", c " << short_number(r.worst[0].candidate)
-            << ")";
+            << short_number(static_cast<double>(r.worst[0].golden)) << ", c "
+            << short_number(static_cast<double>(r.worst[0].candidate)) << ")";
       }
       if (r.nonfinite_mismatches > 0) {
         out << "   NON-FINITE MISMATCHES: " << r.nonfinite_mismatches;
