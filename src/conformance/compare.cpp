@@ -221,14 +221,6 @@ nlohmann::json number_json(double v) {
   return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
 }
 
-std::string short_number(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", v);
-  return buffer;
-}
-
 nlohmann::json threshold_json(const ChannelThreshold& t) {
   return {{"abs", t.absolute},
           {"rel", t.relative},
@@ -237,6 +229,14 @@ nlohmann::json threshold_json(const ChannelThreshold& t) {
           {"max_fail_share", t.allowed_share}};
 }
 }  // namespace
+
+std::string short_number(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  return buffer;
+}
 
 long long ulp_distance(float a, float b) {
   if (std::isnan(a) || std::isnan(b)) {

@@ -143,6 +143,9 @@ Comparison compare_parts(const std::vector<ExrPart>& golden, const std::vector<E
 // A single uniform threshold for every channel.
 ThresholdProfile uniform_profile(const ChannelThreshold& threshold);
 
+// A number in tables and reports: three significant digits (%.3g); nan, inf, -inf spelled out.
+std::string short_number(double v);
+
 // The parts and levels of an EXR file as compare reads them: every part, every resolution level
 // (read_exr_parts, io/exr.h).
 std::vector<ExrPart> read_parts_for_compare(const std::string& path);

@@ -87,9 +87,10 @@ Rgb grey(double v, double lo, double hi) {
   return {g, g, g};
 }
 
-// Values of a w × h window of a channel's grid (x0, y0 its corner) as grey between lo and hi.
-Picture grey_picture(const std::vector<float>& values, int grid_width, int x0, int y0, int w, int h,
-                     double lo, double hi) {
+// A w × h window of a channel's grid (x0, y0 its corner), each value coloured by `colour`.
+template <class Colour>
+Picture window_picture(const std::vector<float>& values, int grid_width, int x0, int y0, int w,
+                       int h, const Colour& colour) {
   Picture p = blank(w, h);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
@@ -97,24 +98,22 @@ Picture grey_picture(const std::vector<float>& values, int grid_width, int x0, i
                      static_cast<std::size_t>(x0 + x);
       put(p,
           static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x),
-          grey(static_cast<double>(values[i]), lo, hi));
+          colour(static_cast<double>(values[i])));
     }
   }
   return p;
 }
 
+// The window as grey between lo and hi.
+Picture grey_picture(const std::vector<float>& values, int grid_width, int x0, int y0, int w, int h,
+                     double lo, double hi) {
+  return window_picture(values, grid_width, x0, y0, w, h,
+                        [&](double v) { return grey(v, lo, hi); });
+}
+
+// The window of relative errors as a heat map.
 Picture heat_picture(const std::vector<float>& e, int grid_width, int x0, int y0, int w, int h) {
-  Picture p = blank(w, h);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const auto i = static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(grid_width) +
-                     static_cast<std::size_t>(x0 + x);
-      put(p,
-          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x),
-          heat_colour(static_cast<double>(e[i])));
-    }
-  }
-  return p;
+  return window_picture(e, grid_width, x0, y0, w, h, [](double v) { return heat_colour(v); });
 }
 
 std::string escape(const std::string& s) {
@@ -133,14 +132,6 @@ std::string escape(const std::string& s) {
     }
   }
   return out;
-}
-
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", v);
-  return buffer;
 }
 
 // Display width of an image in CSS pixels: small grids enlarged, large ones shrunk to fit.
@@ -242,7 +233,7 @@ std::string legend(const ChannelThreshold& t) {
   }
   h << "</div> relative error e = |c&minus;g| / max(|g|, F&middot;RMS(g)), log scale";
   if (t.relative > 0.0 && t.absolute == 0.0)
-    h << "; the white mark is the threshold R = " << num(t.relative);
+    h << "; the white mark is the threshold R = " << short_number(t.relative);
   h << "</div>";
   return h.str();
 }
@@ -416,7 +407,7 @@ void write_report(const std::string& directory, const std::string& golden_name,
     html << "<h2>part " << (p.name.empty() ? std::string("(single)") : escape(p.name));
     if (p.level_x != 0 || p.level_y != 0) html << " level " << p.level_x << "," << p.level_y;
     html << ": " << p.width << "&times;" << p.height << ", " << (p.pass ? "pass" : "FAIL")
-         << ", failing pixels " << num(100.0 * p.failing_share) << "%</h2>\n";
+         << ", failing pixels " << short_number(100.0 * p.failing_share) << "%</h2>\n";
     // Colour overview with a flip.
     {
       const std::vector<Vec3> colours = finite_colours(gp->image);
@@ -443,12 +434,14 @@ void write_report(const std::string& directory, const std::string& golden_name,
       html << "<tr class=\"" << (r.pass ? "pass" : "fail") << "\"><td>" << escape(r.golden_name)
            << (r.candidate_name != r.golden_name ? " &larr; " + escape(r.candidate_name) : "")
            << "</td><td>" << (r.pass ? "pass" : "FAIL") << "</td><td>"
-           << num(100.0 * r.failing_share) << "%</td>";
-      for (const double v : r.relative_percentiles) html << "<td>" << num(v) << "</td>";
-      html << "<td>" << num(r.max_absolute) << "</td><td>" << num(r.golden_rms) << "</td><td>"
+           << short_number(100.0 * r.failing_share) << "%</td>";
+      for (const double v : r.relative_percentiles) html << "<td>" << short_number(v) << "</td>";
+      html << "<td>" << short_number(r.max_absolute) << "</td><td>" << short_number(r.golden_rms)
+           << "</td><td>"
            << (r.nonfinite_mismatches > 0 ? std::string("inf") : std::to_string(r.max_ulp))
-           << "</td><td>A " << num(r.threshold.absolute) << ", R " << num(r.threshold.relative)
-           << ", F " << num(r.threshold.floor) << "</td></tr>\n";
+           << "</td><td>A " << short_number(r.threshold.absolute) << ", R "
+           << short_number(r.threshold.relative) << ", F " << short_number(r.threshold.floor)
+           << "</td></tr>\n";
     }
     html << "</table>\n";
     if (!p.not_compared.empty()) {
@@ -483,9 +476,10 @@ void write_report(const std::string& directory, const std::string& golden_name,
       html << "<section class=\"channel\" id=\"channel-" << section++ << "\" data-channel=\""
            << escape(label) << "\" data-result=\"" << (r.pass ? "pass" : "fail") << "\">\n<h3>"
            << escape(label) << ": " << (r.pass ? "pass" : "FAIL") << " &mdash; " << r.failing
-           << " of " << r.values << " values fail (" << num(100.0 * r.failing_share) << "%), e p50 "
-           << num(r.relative_percentiles[0]) << ", p99.9 " << num(r.relative_percentiles[3])
-           << ", max " << num(r.relative_percentiles[4]);
+           << " of " << r.values << " values fail (" << short_number(100.0 * r.failing_share)
+           << "%), e p50 " << short_number(r.relative_percentiles[0]) << ", p99.9 "
+           << short_number(r.relative_percentiles[3]) << ", max "
+           << short_number(r.relative_percentiles[4]);
       if (r.nonfinite_mismatches > 0) {
         html << ", <b>" << r.nonfinite_mismatches << " non-finite mismatches</b>";
       }
@@ -497,8 +491,8 @@ void write_report(const std::string& directory, const std::string& golden_name,
       Picture mask = blank(r.width, r.height);
       for (std::size_t i = 0; i < r.fails.size(); ++i) put(mask, i, r.fails[i] ? kFail : kPass);
       html << flip_figure(gv, cv, r.width,
-                          "values, grey from " + num(lo) + " (black) to " + num(hi) +
-                              " (white), magenta non-finite")
+                          "values, grey from " + short_number(lo) + " (black) to " +
+                              short_number(hi) + " (white), magenta non-finite")
            << "<figure>"
            << img(data_uri(heat_picture(r.relative_error, r.width, 0, 0, r.width, r.height)),
                   r.width, "heat", "relative error heat map")
@@ -531,9 +525,10 @@ void write_report(const std::string& directory, const std::string& golden_name,
           }
           const int factor = 8;
           html << "<tr><td>(" << w.x << ", " << w.y << ")<br>g "
-               << num(static_cast<double>(w.golden)) << "<br>c "
-               << num(static_cast<double>(w.candidate)) << "<br>|c&minus;g| " << num(w.absolute)
-               << "<br>e " << num(w.relative) << "<br>" << (w.pass ? "passes" : "fails") << "</td>";
+               << short_number(static_cast<double>(w.golden)) << "<br>c "
+               << short_number(static_cast<double>(w.candidate)) << "<br>|c&minus;g| "
+               << short_number(w.absolute) << "<br>e " << short_number(w.relative) << "<br>"
+               << (w.pass ? "passes" : "fails") << "</td>";
           for (const Picture& crop : {grey_picture(g->values, r.width, x0, y0, cw, ch, clo, chi),
                                       grey_picture(c->values, r.width, x0, y0, cw, ch, clo, chi),
                                       heat_picture(r.relative_error, r.width, x0, y0, cw, ch)}) {
