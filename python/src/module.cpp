@@ -7,6 +7,7 @@
 
 #include "build_info.h"
 #include "common.h"
+#include "conformance/provenance.h"
 #include "scene/scene.h"
 #include "spectrum/model.h"
 
@@ -69,6 +70,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("__version__") = OCEANREF_PY_VERSION;
   py::dict info;
   info["version"] = "oceanref " OCEANREF_PY_VERSION;
+  info["commit"] = oceanref::oceanref_commit();  // as `oceanref --version` (build time)
   info["compiler"] = OCEANREF_PY_COMPILER;
   info["build_type"] = OCEANREF_PY_BUILD_TYPE;
   info["flags"] = OCEANREF_PY_FLAGS;
