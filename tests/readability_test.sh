@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Every kind of file oceanref writes opens in common tools (issue 13): OpenImageIO's oiiotool
-# (`--info -v -a`, every subimage) and OpenEXR's exrheader, with the expected parts, channels and
-# header attributes. Both tools come from Debian (openimageio-tools, openexr; tools/setup.sh);
-# the test is skipped (exit 77) only when one of them is missing.
+# (`--info -v -a`, every subimage), OpenImageIO's Python module (every subimage's pixels) and
+# OpenEXR's exrheader, with the expected parts, channels and header attributes. All come from
+# Debian (openimageio-tools, python3-openimageio, openexr; tools/setup.sh); the test is skipped
+# (exit 77) only when one of them is missing.
 #
 #   tests/readability_test.sh PATH/TO/oceanref SOURCE_DIR
 set -uo pipefail
@@ -15,6 +16,10 @@ for tool in oiiotool exrheader; do
     exit 77
   fi
 done
+if ! /usr/bin/python3 -c 'import OpenImageIO' 2>/dev/null; then
+  echo "SKIP: OpenImageIO's Python module not installed (tools/setup.sh installs python3-openimageio)"
+  exit 77
+fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0
@@ -54,6 +59,26 @@ readable() {
   if [[ $file == *.exr ]]; then
     exrheader "$file" >"$tmp/header" 2>&1 || fail "exrheader cannot read $file: $(head -c 400 "$tmp/header")"
   fi
+  # OpenImageIO's Python module: every subimage (part or level), every pixel as float.
+  local py
+  py=$(/usr/bin/python3 - "$file" <<'PY' 2>&1
+import sys
+import OpenImageIO as oiio
+inp = oiio.ImageInput.open(sys.argv[1])
+if not inp:
+    sys.exit("cannot open: " + oiio.geterror())
+count = 0
+while inp.seek_subimage(count, 0):
+    spec = inp.spec()
+    pixels = inp.read_image(count, 0, 0, spec.nchannels, "float")
+    if pixels is None or pixels.size != spec.width * spec.height * spec.nchannels:
+        sys.exit("subimage %d: cannot read its pixels: %s" % (count, inp.geterror()))
+    count += 1
+inp.close()
+print(count)
+PY
+  )
+  [ "$py" = "$subimages" ] || fail "OpenImageIO's Python module on $file: $py (expected $subimages subimages)"
 }
 
 commit=$("$bin" --version | sed -n '1s/.*(commit \(.*\))$/\1/p')

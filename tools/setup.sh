@@ -13,7 +13,7 @@ build_dir=${1:-build}
 packages=(build-essential cmake ninja-build clang clang-format dpkg-dev
           libglm-dev libopenexr-dev libtinyobjloader-dev doctest-dev
           nlohmann-json3-dev libcli11-dev libfftw3-dev pkg-config zlib1g-dev libmpfr-dev
-          chromium openimageio-tools openexr python3-jsonschema
+          chromium openimageio-tools python3-openimageio openexr python3-jsonschema
           pybind11-dev python3-dev python3-numpy python3-pytest)
 
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
