@@ -1,6 +1,6 @@
 // One random realization of a spectrum on a cascade's wavevector grid (Gamper §4.1–4.2).
 //
-// Index conventions (tested in tests/test_realization.cpp):
+// Index conventions (tested in tests/test_waves.cpp and tests/test_stages.cpp; docs/BACKENDS.md):
 //   * a field sample (m, n), 0 ≤ m, n < N, sits at x = m·L/N, z = n·L/N; arrays are row-major
 //     in z: value[n·N + m];
 //   * a spectrum entry at array index (a, b) holds the wavevector k = (α, β)·2π/L with
