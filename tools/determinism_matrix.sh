@@ -49,12 +49,14 @@ verify() {
 
 bash tools/build.sh build
 CC=clang CXX=clang++ bash tools/build.sh build-clang -DCMAKE_BUILD_TYPE=RelWithDebInfo  # -O2 -g
-# The matrix renders with the program only: no Python module in the extra builds.
-bash tools/build.sh build-O0 -DCMAKE_BUILD_TYPE=Debug -DOCEANREF_PYTHON=OFF  # -g, no optimization
+# The matrix renders with the program only: neither tests nor the Python module in the extra
+# builds (build/ and build-clang/ run the tests: tools/test.sh, tools/compare_compilers.sh).
+program_only=(-DOCEANREF_PYTHON=OFF -DBUILD_TESTING=OFF)
+bash tools/build.sh build-O0 -DCMAKE_BUILD_TYPE=Debug "${program_only[@]}"  # -g, no optimization
 bash tools/build.sh build-gcc-v3 -DCMAKE_C_FLAGS=-march=x86-64-v3 -DCMAKE_CXX_FLAGS=-march=x86-64-v3 \
-  -DOCEANREF_PYTHON=OFF
+  "${program_only[@]}"
 CC=clang CXX=clang++ bash tools/build.sh build-clang-native \
-  -DCMAKE_C_FLAGS=-march=native -DCMAKE_CXX_FLAGS=-march=native -DOCEANREF_PYTHON=OFF
+  -DCMAKE_C_FLAGS=-march=native -DCMAKE_CXX_FLAGS=-march=native "${program_only[@]}"
 builds=(build build-clang build-O0 build-clang-native)
 # An x86-64-v3 binary needs AVX2, FMA, BMI2 to run; it is still built and checked without them.
 if grep -qw avx2 /proc/cpuinfo && grep -qw fma /proc/cpuinfo && grep -qw bmi2 /proc/cpuinfo; then
