@@ -302,17 +302,21 @@ TEST_CASE("float32 backend: every stage passes its shipped profile; perturbed st
       }
     }
     CHECK(rounded);
-    // A float16-rounded copy of the stage fails its profile.
-    const Comparison half = compare_parts(
-        golden,
-        float32_stage_parts(scene.waves, stage, scene.time, Float32Defect::half_float_output), {},
-        profile);
-    CHECK_FALSE(half.pass);
-    if (stage == Stage::spectrum || stage == Stage::omega) continue;
-    // One wave's phase flipped (h0 of cascade 0's strongest wave negated), the conjugate term
-    // dropped, the phase ωt in half precision: each fails every channel of cascade 0.
-    std::vector<Float32Defect> defects{Float32Defect::flip_one_phase};
-    if (stage != Stage::h0) {
+    // Perturbed stages fail the profile, in every channel of cascade 0 that the defect reaches:
+    // Θ without the polar Jacobian 1/k (every stage but omega), one wave's phase flipped (h0 of
+    // cascade 0's strongest wave negated: h0, hkt, fields), the conjugate term dropped and the
+    // phase ωt in half precision (hkt, fields), a float16-rounded copy (omega and fields, whose
+    // profiles are tight enough: the others allow the float32 conditioning near the upwind
+    // direction, up to 4e-4 of the RMS, more than float16's 2.4e-4).
+    std::vector<Float32Defect> defects;
+    if (stage != Stage::omega) defects.push_back(Float32Defect::drop_polar_jacobian);
+    if (stage == Stage::omega || stage == Stage::fields) {
+      defects.push_back(Float32Defect::half_float_output);
+    }
+    if (stage == Stage::h0 || stage == Stage::hkt || stage == Stage::fields) {
+      defects.push_back(Float32Defect::flip_one_phase);
+    }
+    if (stage == Stage::hkt || stage == Stage::fields) {
       defects.push_back(Float32Defect::drop_conjugate_term);
       defects.push_back(Float32Defect::half_float_phase);
     }
@@ -321,11 +325,17 @@ TEST_CASE("float32 backend: every stage passes its shipped profile; perturbed st
       const Comparison bad = compare_parts(
           golden, float32_stage_parts(scene.waves, stage, scene.time, d), {}, profile);
       CHECK_FALSE(bad.pass);
+      const bool one_wave = d == Float32Defect::flip_one_phase && stage != Stage::fields;
       for (const PartResult& p : bad.parts) {
-        if (p.name.rfind("c0", 0) != 0) continue;
+        if (p.name != "c0") continue;
         for (const ChannelResult& c : p.channels) {
           CAPTURE(c.golden_name);
+          if (c.golden_name == "c0.in_band" || c.golden_name == "c0.kx" ||
+              c.golden_name == "c0.kz" || c.golden_name == "c0.k")
+            continue;
           CHECK_FALSE(c.pass);
+          // One wave: exactly its entry fails (in hkt also its conjugate partner's).
+          if (one_wave) CHECK(c.failing == (stage == Stage::h0 ? 1u : 2u));
         }
       }
     }

@@ -34,15 +34,19 @@ done
 bin=$build/src/oceanref
 [ -x "$bin" ] || { echo "float32_profiles: $bin not found (build first)" >&2; exit 2; }
 
-# The scenes: the default scene, the worked example, and five golden scenes that together cover
+# The scenes: the default scene, the worked example, and four golden scenes that together cover
 # every spectrum the backend supports but Phillips (JONSWAP, Pierson-Moskowitz, Donelan, TMA),
-# the spreadings hasselmann, mitsuyasu with swell and spread blend, donelan, gamper and
-# donelan-banner, deep and finite-depth dispersion, band partitioning and multi-resolution.
+# the spreadings hasselmann, mitsuyasu with swell and spread blend, donelan and donelan-banner,
+# deep and finite-depth dispersion, band partitioning and multi-resolution. Not
+# gamper_inside_volume_sunset: its wind lies along a grid axis, so grid entries lie exactly
+# upwind, where the cos-2s spreading with a small spread s has a notch of infinite slope
+# (|cos(θ/2)|^{2s}); oceanref evaluates cos(π/2) as 6.1e-17 there, float32 as 4.4e-8, and
+# the difference reaches 9% of the h0 RMS (docs/BACKENDS.md, "Ill-conditioned entries").
 # Times: 0, 1 and 10 s (beyond 10 s the float phase omega*t loses digits: reference/ACCURACY.md).
 # tests/test_conformance.cpp checks the profiles on a scene and a time not among these.
 scenes=(reference/scenes/default.json reference/scenes/backend_example.json)
 for name in jonswap_storm_whitecaps pm_high_sun donelan_near_surface_shader_options \
-  gamper_inside_volume_sunset tma_shallow_grazing; do
+  tma_shallow_grazing; do
   scenes+=("reference/scenes/golden/$name.json")
 done
 times=(0 1 10)

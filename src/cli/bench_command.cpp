@@ -5,6 +5,7 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "cli/text.h"
 #include "conformance/fields_output.h"
@@ -150,13 +151,15 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   float32->add_option("--time", float32_flags->time, "time t [s] (default: the scene's)")
       ->check(CLI::Range(0.0, 1e7));
   float32
-      ->add_option("--defect", float32_flags->defect,
-                   "a deliberate bug, to see the profile catch it: drop-conjugate-term, "
-                   "half-float-phase (hkt, fields), flip-one-phase (cascade 0's strongest h0 "
-                   "negated: h0, hkt, fields), half-float-output (every value written rounded to "
-                   "11 significant bits: any stage)")
-      ->check(CLI::IsMember({"none", "drop-conjugate-term", "half-float-phase", "half-float-output",
-                             "flip-one-phase"}))
+      ->add_option(
+          "--defect", float32_flags->defect,
+          "a deliberate bug, to see the profile catch it: drop-conjugate-term, "
+          "half-float-phase (hkt, fields), flip-one-phase (cascade 0's strongest h0 "
+          "negated: h0, hkt, fields), half-float-output (every value written rounded to "
+          "11 significant bits: any stage), drop-polar-jacobian (Theta = Psi D without the 1/k: "
+          "every stage but omega)")
+      ->check(CLI::IsMember(
+          std::vector<std::string>(std::begin(kFloat32DefectNames), std::end(kFloat32DefectNames))))
       ->capture_default_str();
   float32->add_option("--threads", float32_flags->threads, "worker threads (golden)")
       ->check(CLI::Range(1, 1024))

@@ -301,7 +301,8 @@ NormalPairF standard_normal_pair_f(std::uint64_t key) {
   return {radius * cos_f(angle), radius * sin_f(angle)};
 }
 
-Float32Pattern make_pattern(const SpectrumF& s, std::uint64_t seed, const Pattern& p) {
+Float32Pattern make_pattern(const SpectrumF& s, std::uint64_t seed, const Pattern& p,
+                            Float32Defect defect) {
   const int n = p.resolution;
   const std::size_t cells = grid_cells(n);
   Float32Pattern out{p,
@@ -334,8 +335,9 @@ Float32Pattern make_pattern(const SpectrumF& s, std::uint64_t seed, const Patter
       out.omega[i] = omega;
       // Θ(k) = Ψ(k) D(ω, θ)/k  (Gamper eq. 3.59–3.61).
       const float psi = wavenumber_spectrum(s, k, omega);
+      const float jacobian = defect == Float32Defect::drop_polar_jacobian ? 1.0f : k;
       out.theta[i] =
-          psi == 0.0f ? 0.0f : psi * directional_spreading(s, omega, atan2_f(kz, kx)) / k;
+          psi == 0.0f ? 0.0f : psi * directional_spreading(s, omega, atan2_f(kz, kx)) / jacobian;
       if (!(k >= lower && k < upper)) continue;
       out.in_band[i] = 1.0f;
       out.variance[i] = out.theta[i] * dk * dk;
@@ -435,11 +437,12 @@ std::vector<Float32Cascade> float32_cascades(const WaveSettings& waves, Float32D
   for (std::size_t i = 0; i < waves.sizes.size(); ++i) {
     const auto index = static_cast<std::uint32_t>(i);
     Float32Cascade c;
-    c.high = make_pattern(s, waves.seed, {index, waves.sizes[i], waves.resolution, high_bands[i]});
+    c.high = make_pattern(s, waves.seed, {index, waves.sizes[i], waves.resolution, high_bands[i]},
+                          defect);
     c.low = waves.low_resolution == waves.resolution
                 ? c.high
                 : make_pattern(s, waves.seed,
-                               {index, waves.sizes[i], waves.low_resolution, low_bands[i]});
+                               {index, waves.sizes[i], waves.low_resolution, low_bands[i]}, defect);
     cascades.push_back(std::move(c));
   }
   if (defect == Float32Defect::flip_one_phase && !cascades.empty()) {

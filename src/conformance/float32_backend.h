@@ -48,9 +48,11 @@ enum class Float32Defect {
   half_float_phase,     // ωt rounded to float16-like precision (11 significant bits)
   half_float_output,    // every value written rounded to 11 significant bits (a float16 copy)
   flip_one_phase,       // h0 of cascade 0's strongest wave negated (one mode's phase off by π)
+  drop_polar_jacobian,  // Θ = Ψ·D instead of Ψ·D/k (eq. 3.61's 1/k forgotten)
 };
 inline constexpr const char* kFloat32DefectNames[] = {
-    "none", "drop-conjugate-term", "half-float-phase", "half-float-output", "flip-one-phase"};
+    "none",           "drop-conjugate-term", "half-float-phase", "half-float-output",
+    "flip-one-phase", "drop-polar-jacobian"};
 
 struct ComplexF {
   float re = 0.0f;
