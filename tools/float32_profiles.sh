@@ -10,14 +10,16 @@
 #      the largest relative error measured in each channel group (c*.height, c*.h0.re, ...);
 #   3. the stage, a description and the scenes and times added to each profile; then the
 #      per-stage percentiles of every run (p50 … max of e, the largest over a stage's channels
-#      and runs) printed as a markdown table (the figures docs/BACKENDS.md quotes).
+#      and runs) printed as a markdown table (the figures docs/BACKENDS.md quotes);
+#   4. the growth with time: the largest e over cascade 0's fields of the default scene at
+#      t = 0, 10, 100 and 1000 s (the figures reference/ACCURACY.md quotes).
 #
 #   tools/float32_profiles.sh [--no-update] [--build DIR]
 #       --no-update  measure and print only: leave reference/profiles as they are
 #       --build DIR  the build folder holding src/oceanref (default: build)
 #
-# Takes about 4 minutes on the 2-core machine (most of it oceanref's fields of the default scene:
-# its sum part is summed directly).
+# Takes about 75 s on the 2-core machine shared with other builds (most of it oceanref's fields of
+# the default scene: its sum part is summed directly).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -133,3 +135,16 @@ for stage in stages:
                 worst = [max(w, v) for w, v in zip(worst, c["rel_percentiles"])]
     print(f"| {stage} | {runs} | {channels} | " + " | ".join(f"{v:.2e}" for v in worst) + " |")
 EOF
+
+# The growth with time: the float phase omega*t loses digits as t grows.
+echo
+echo "default scene, cascade 0, largest e over its fields:"
+for t in 0 10 100 1000; do
+  "$bin" bench float32 reference/scenes/default.json --time "$t" -o "$work/grow.f32.exr" \
+    --golden "$work/grow.gold.exr" >/dev/null 2>&1
+  "$bin" compare "$work/grow.f32.exr" "$work/grow.gold.exr" --floor 1 --rel 1e30 --format json |
+    python3 -c 'import json, sys
+parts = json.load(sys.stdin)["parts"]
+e = max(c["max_rel"] for p in parts if p["name"] == "c0" for c in p["channels"])
+print("t = %s s: %.2e" % (sys.argv[1], e))' "$t"
+done
