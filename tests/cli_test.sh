@@ -245,7 +245,9 @@ checks=$((checks + 1))
 grep -q 'warning' "$tmp/err" && fail "a warning for a scene that uses every key: $(cat "$tmp/err")"
 
 # --- compare ------------------------------------------------------------------------------------
-expect 0 '^result: pass' compare "$tmp/r2.exr" "$tmp/r1.exr"
+expect 0 '^SSIM \(R,G,B luminance, tone-mapped by the golden.s key [0-9.e+-]+\): 1\.000000$' \
+  compare "$tmp/r2.exr" "$tmp/r1.exr"
+grep -q '^result: pass' "$tmp/out" || fail "compare of identical renders did not pass"
 "$bin" render "$tmp/render.json" -o "$tmp/r_spp1.exr" --spp 1 >/dev/null
 checks=$((checks + 1))
 "$bin" compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --report "$tmp/report" --json "$tmp/c.json" \
@@ -258,6 +260,19 @@ for file in index.html diff.exr; do
 done
 grep -q '"result": "fail"' "$tmp/c.json" || fail "compare --json has no result"
 grep -q '"rel_percentiles"' "$tmp/c.json" || fail "compare --json has no percentiles"
+grep -q '"ssim"' "$tmp/c.json" || fail "compare --json has no SSIM"
+grep -q 'class="ssim">SSIM' "$tmp/report/index.html" || fail "compare --report shows no SSIM"
+# --min-ssim: a different sampling (1 vs 4 samples per pixel) is below 0.9999999 but above 0.5.
+ssim=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["parts"][0]["ssim"]["value"])' "$tmp/c.json")
+checks=$((checks + 1))
+python3 -c "import sys; sys.exit(not 0.5 < $ssim < 0.9999999)" || fail "SSIM of spp 1 vs 4: $ssim"
+expect 0 '^result: pass' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --rel 1e30 --floor 1 --min-ssim 0.5
+checks=$((checks + 1))
+"$bin" compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --rel 1e30 --floor 1 --min-ssim 0.9999999 >"$tmp/out" 2>&1
+[ $? -eq 1 ] || fail "compare --min-ssim above the SSIM did not exit 1"
+grep -q 'min_ssim 1: FAIL' "$tmp/out" || fail "compare --min-ssim: no failing SSIM line: $(cat "$tmp/out")"
+expect 2 '--min-ssim' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --min-ssim 1.5
+expect 2 'excludes' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --profile x.json --min-ssim 0.5
 expect 0 '"result": "pass"' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --abs 1e30 --format json
 expect 0 '^result: pass' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --rel 1e30 --floor 1
 expect 0 '^result: pass' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --max-fail-share 1
@@ -278,18 +293,37 @@ expect 2 '--profile.*cannot read' compare "$tmp/r2.exr" "$tmp/r1.exr" --profile 
 printf '{"default": {"rel": 1e-3}, "bogus": 1}' >"$tmp/bad_profile.json"
 expect 2 "--profile.*unknown key 'bogus'" compare "$tmp/r2.exr" "$tmp/r1.exr" \
   --profile "$tmp/bad_profile.json"
-# The float32 example backend against the shipped profile: pass; with a bug: fail (exit 1).
+# The float32 example backend, stage by stage, against oceanref's stage (`fields --stage`) with
+# the shipped per-stage profile: pass; with a bug that reaches the stage: fail (exit 1). A scene
+# and a time the profiles were not derived from.
 root=$(cd "$(dirname "$0")/.." && pwd)
+unseen=$root/reference/scenes/golden/cos2_printed_bilinear_unpartitioned.json
+for pair in spectrum:drop-polar-jacobian h0:flip-one-phase omega:half-float-output \
+  hkt:drop-conjugate-term fields:flip-one-phase; do
+  stage=${pair%%:*}
+  defect=${pair#*:}
+  profile=$root/reference/profiles/${stage}_float32.json
+  expect 0 "^wrote .*f32_$stage\.exr" bench float32 "$unseen" --stage "$stage" --time 2.5 \
+    -o "$tmp/f32_$stage.exr"
+  "$bin" fields "$unseen" --stage "$stage" --time 2.5 -o "$tmp/gold_$stage.exr" 2>/dev/null
+  expect 0 '^result: pass' compare "$tmp/f32_$stage.exr" "$tmp/gold_$stage.exr" --profile "$profile"
+  "$bin" bench float32 "$unseen" --stage "$stage" --time 2.5 -o "$tmp/bad.exr" --defect "$defect" \
+    >/dev/null 2>&1
+  checks=$((checks + 1))
+  "$bin" compare "$tmp/bad.exr" "$tmp/gold_$stage.exr" --profile "$profile" >"$tmp/out" 2>&1
+  [ $? -eq 1 ] || fail "compare of the float32 $stage with $defect did not exit 1"
+  grep -q '^result: fail' "$tmp/out" || fail "the float32 $stage with $defect passed its profile"
+done
+# --golden writes exactly what `oceanref fields --stage` writes (the same decoded channels).
+expect 0 '^wrote .*gold\.exr' bench float32 "$unseen" --stage h0 --time 2.5 -o "$tmp/f32.exr" \
+  --golden "$tmp/gold.exr"
+expect 0 '^result: pass' compare "$tmp/gold.exr" "$tmp/gold_h0.exr"
+expect 2 'SCENE.*waves.spectrum.model: unified is not supported' bench float32 \
+  "$root/reference/scenes/golden/unified_capillary_horizon_sun.json" -o "$tmp/x.exr"
+[ ! -e "$tmp/x.exr" ] || fail "a refused float32 run left an output file"
 profile=$root/reference/profiles/fields_float32.json
-expect 0 '^wrote .*f32\.exr' bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 \
-  -o "$tmp/f32.exr" --golden "$tmp/gold.exr"
-expect 0 '^result: pass' compare "$tmp/f32.exr" "$tmp/gold.exr" --profile "$profile"
-"$bin" bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 -o "$tmp/bad.exr" \
-  --defect drop-conjugate-term >/dev/null
-checks=$((checks + 1))
-"$bin" compare "$tmp/bad.exr" "$tmp/gold.exr" --profile "$profile" >"$tmp/out" 2>&1
-[ $? -eq 1 ] || fail "compare of the broken float32 backend did not exit 1"
-grep -q '^result: fail' "$tmp/out" || fail "the broken float32 backend passed the profile"
+"$bin" bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 -o "$tmp/f32.exr" \
+  --golden "$tmp/gold.exr" >/dev/null 2>&1
 # The profile has no default: a channel it does not cover is refused.
 expect 2 "no threshold for channel 'B'" compare "$tmp/r2.exr" "$tmp/r1.exr" --profile "$profile"
 # --suggest: from two runs, rules for every field kind; the written profile accepts the runs.

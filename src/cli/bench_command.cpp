@@ -1,17 +1,21 @@
 #include "cli/bench_command.h"
 
 #include <cmath>
+#include <iterator>
 #include <memory>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "cli/text.h"
+#include "conformance/fields_output.h"
 #include "conformance/float32_backend.h"
 #include "conformance/lighting_map.h"
 #include "conformance/study.h"
 #include "io/exr.h"
 #include "scene/scene.h"
 #include "waves/ocean.h"
+#include "waves/stages.h"
 
 namespace oceanref::cli {
 
@@ -120,33 +124,42 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   struct Float32Flags {
-    std::string scene, output, golden, defect = "none";
+    std::string scene, output, golden, defect = "none", stage = "fields";
     double time = 0.0;
-    bool time_given = false;
     int threads = 2;
   };
   auto float32_flags = std::make_shared<Float32Flags>();
   CLI::App* float32 = bench->add_subcommand(
       "float32",
-      "The float32 example backend (src/conformance/float32_backend.h): every raw wave field of "
-      "every cascade computed in float32 (float phases and products, FFTW float), written as a "
-      "candidate EXR; --golden writes oceanref's double fields rounded to float32 in the same "
-      "layout. Then: oceanref compare CANDIDATE GOLDEN --profile "
-      "reference/profiles/fields_float32.json. One multi-part EXR (parts c<i> on "
-      "N_h and, with multi-resolution, c<i>.low on N_l).");
+      "The float32 example backend (src/conformance/float32_backend.h): one stage of the scene's "
+      "waves computed entirely in float32 from the scene (spectrum, h0 with the counter-based "
+      "draws, omega, hkt, fields with FFTW float), written as a candidate EXR in the layout of "
+      "`oceanref fields --stage STAGE` (parts c<i> on N_h and, with multi-resolution, c<i>.low "
+      "on N_l); --golden also writes what `oceanref fields --stage STAGE` writes. Then: oceanref "
+      "compare CANDIDATE GOLDEN --profile reference/profiles/STAGE_float32.json.");
   float32->add_option("SCENE", float32_flags->scene, "scene file")->required();
+  float32->add_option("-o,--output", float32_flags->output, "candidate: OUT.exr")->required();
   float32
-      ->add_option("-o,--output", float32_flags->output,
-                   "candidate: OUT.exr (writes OUT.<part>.exr)")
-      ->required();
-  float32->add_option("--golden", float32_flags->golden,
-                      "also write the golden: GOLDEN.exr (GOLDEN.<part>.exr)");
+      ->add_option("--stage", float32_flags->stage,
+                   "spectrum, h0, omega, hkt or fields (the raw fields c<i>.<field>, no "
+                   "jacobian, foam or sum part)")
+      ->check(CLI::IsMember({"spectrum", "h0", "omega", "hkt", "fields"}))
+      ->capture_default_str();
+  float32->add_option(
+      "--golden", float32_flags->golden,
+      "also write oceanref's STAGE (as `oceanref fields --stage STAGE`): GOLDEN.exr");
   float32->add_option("--time", float32_flags->time, "time t [s] (default: the scene's)")
       ->check(CLI::Range(0.0, 1e7));
   float32
-      ->add_option("--defect", float32_flags->defect,
-                   "a deliberate bug, to see the profile catch it")
-      ->check(CLI::IsMember({"none", "drop-conjugate-term", "half-float-phase"}))
+      ->add_option(
+          "--defect", float32_flags->defect,
+          "a deliberate bug, to see the profile catch it: drop-conjugate-term, "
+          "half-float-phase (hkt, fields), flip-one-phase (cascade 0's strongest h0 "
+          "negated: h0, hkt, fields), half-float-output (every value written rounded to "
+          "11 significant bits: any stage), drop-polar-jacobian (Theta = Psi D without the 1/k: "
+          "every stage but omega)")
+      ->check(CLI::IsMember(
+          std::vector<std::string>(std::begin(kFloat32DefectNames), std::end(kFloat32DefectNames))))
       ->capture_default_str();
   float32->add_option("--threads", float32_flags->threads, "worker threads (golden)")
       ->check(CLI::Range(1, 1024))
@@ -162,24 +175,37 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       } catch (const std::exception& e) {
         throw UsageError("SCENE", e.what());
       }
-      const double time = float32->count("--time") > 0 ? g.time : scene.time;
-      const Ocean ocean = realize_ocean(scene.waves, g.threads);
-      const Float32Defect defect =
-          g.defect == "drop-conjugate-term"
-              ? Float32Defect::drop_conjugate_term
-              : (g.defect == "half-float-phase" ? Float32Defect::half_float_phase
-                                                : Float32Defect::none);
-      const auto write_parts = [&](const std::string& path, std::vector<ExrPart> parts) {
-        for (ExrPart& part : parts) {
-          part.image.attributes["oceanref.time_s"] = format_number(time);
-          part.image.attributes["oceanref.backend"] =
-              std::string("float32 example backend, defect ") + g.defect;
-        }
-        write_exr_parts(path, parts);
-        out << "wrote " << path << " (" << parts.size() << " parts)\n";
-      };
-      write_parts(g.output, float32_fields_parts(ocean, time, defect));
-      if (!g.golden.empty()) write_parts(g.golden, reference_fields_parts(ocean, time, g.threads));
+      if (float32->count("--time") > 0) scene.time = g.time;
+      Stage stage = Stage::fields;
+      for (std::size_t i = 0; i < kStageNames.size(); ++i) {
+        if (g.stage == kStageNames[i]) stage = Stage(i);
+      }
+      Float32Defect defect = Float32Defect::none;
+      for (std::size_t i = 0; i < std::size(kFloat32DefectNames); ++i) {
+        if (g.defect == kFloat32DefectNames[i]) defect = Float32Defect(i);
+      }
+      std::vector<ExrPart> candidate;
+      try {
+        candidate = float32_stage_parts(scene.waves, stage, scene.time, defect);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError("SCENE", g.scene + ": " + e.what());
+      }
+      for (ExrPart& part : candidate) {
+        part.image.attributes["oceanref.time_s"] = format_number(scene.time);
+        part.image.attributes["oceanref.stage"] = g.stage;
+        part.image.attributes["oceanref.backend"] =
+            std::string("float32 example backend, defect ") + g.defect;
+      }
+      write_exr_parts(g.output, candidate);
+      out << "wrote " << g.output << " (" << candidate.size() << " parts)\n";
+      if (!g.golden.empty()) {
+        const Ocean ocean = realize_ocean(scene.waves, g.threads);
+        const std::vector<ExrPart> golden = stage == Stage::fields
+                                                ? fields_image(scene, ocean, g.threads).parts
+                                                : stage_image(scene, ocean, stage, g.threads);
+        write_exr_parts(g.golden, golden);
+        out << "wrote " << g.golden << " (" << golden.size() << " parts)\n";
+      }
       return;
     }
     if (lighting_map->parsed()) {

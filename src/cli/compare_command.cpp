@@ -88,6 +88,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
     ChannelThreshold threshold;
     bool alpha = false, suggest = false;
     double safety = 4.0;
+    double min_ssim = 0.0;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
@@ -98,7 +99,8 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       "a channel passes if at most S of its values fail. Any non-finite mismatch (NaN or +-Inf "
       "on one side only, +Inf vs -Inf, NaN vs Inf) fails, always. Prints per channel the "
       "percentiles p50/p90/p99/p99.9/max of e, the largest |c-g|, RMS(g), the largest ULP "
-      "distance, the failing share and the worst pixel. Exit 0 pass, 1 fail, 2 bad input. "
+      "distance, the failing share and the worst pixel; for a part with R, G, B (or Y) also "
+      "its SSIM (see --min-ssim). Exit 0 pass, 1 fail, 2 bad input. "
       "With --suggest: derive per-channel thresholds from several candidate runs.");
   cmd->add_option(
          "FILES", f->files,
@@ -118,6 +120,13 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
   auto* share = cmd->add_option("--max-fail-share", f->threshold.allowed_share,
                                 "S: allowed share of failing values per channel, in [0, 1] (0)")
                     ->check(CLI::Range(0.0, 1.0));
+  auto* min_ssim =
+      cmd->add_option("--min-ssim", f->min_ssim,
+                      "fail a part with R, G, B (or Y) whose SSIM is below this, in [-1, 1] "
+                      "(SSIM: Wang et al. 2004 on the luminance tone-mapped by the golden's "
+                      "log-average, 11x11 Gaussian window sigma 1.5, K1 0.01, K2 0.03, L 1; always "
+                      "reported for such parts)")
+          ->check(CLI::Range(-1.0, 1.0));
   cmd->add_option("--profile", f->profile,
                   "FILE: per-channel thresholds (reference/profiles/*.json) instead of "
                   "--abs/--rel/--floor/--ulp/--max-fail-share")
@@ -125,7 +134,8 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       ->excludes(rel)
       ->excludes(floor)
       ->excludes(ulp)
-      ->excludes(share);
+      ->excludes(share)
+      ->excludes(min_ssim);
   cmd->add_option("--channels", f->channels,
                   "NAME,NAME,... or CANDIDATE=GOLDEN,...: compare just these (names or aliases: "
                   "R/r/red/rgba.R, G, B, A, Y/luminance); default: every candidate channel but "
@@ -149,7 +159,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       ->check(CLI::Range(1.0, 1e6));
   cmd->add_option("-o,--output", f->output, "--suggest: write the profile JSON to FILE");
   cmd->add_option("--name", f->name, "--suggest: the profile's name");
-  return [f, floor](std::ostream& out) {
+  return [f, floor, min_ssim](std::ostream& out) {
     ChannelSelection selection;
     if (!f->channels.empty()) {
       try {
@@ -160,8 +170,9 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
     }
     selection.include_alpha = f->alpha;
     if (f->suggest) {
-      if (!f->report.empty() || !f->profile.empty() || !f->json.empty()) {
-        throw UsageError("--suggest", "cannot be combined with --report, --profile or --json");
+      if (!f->report.empty() || !f->profile.empty() || !f->json.empty() || min_ssim->count() > 0) {
+        throw UsageError("--suggest",
+                         "cannot be combined with --report, --profile, --json or --min-ssim");
       }
       std::vector<std::pair<std::string, std::string>> runs;
       // The golden is the last file, as in compare CANDIDATE GOLDEN.
@@ -215,6 +226,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       throw UsageError("--list", "--list and --output belong to --suggest");
     }
     ThresholdProfile profile = uniform_profile(f->threshold);
+    if (min_ssim->count() > 0) profile.min_ssim = f->min_ssim;
     if (!f->profile.empty()) {
       try {
         profile = read_profile(f->profile);

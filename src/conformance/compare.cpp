@@ -290,8 +290,9 @@ ThresholdProfile parse_profile(const std::string& json_text, const std::string& 
     throw std::invalid_argument(source + ": not valid JSON: " + e.what());
   }
   if (!j.is_object()) throw std::invalid_argument(source + ": a profile is a JSON object");
-  static const std::set<std::string> known_top{"name",       "stage",   "description", "rule",
-                                               "derivation", "default", "channels",    "comment"};
+  static const std::set<std::string> known_top{"name",     "stage",      "description",
+                                               "rule",     "derivation", "default",
+                                               "channels", "comment",    "min_ssim"};
   static const std::set<std::string> known_rule{"part",
                                                 "match",
                                                 "abs",
@@ -338,6 +339,13 @@ ThresholdProfile parse_profile(const std::string& json_text, const std::string& 
           threshold_from_json(r, p.has_fallback ? p.fallback : ChannelThreshold{}, where);
       p.rules.push_back(rule);
     }
+  }
+  if (j.contains("min_ssim")) {
+    const nlohmann::json& v = j.at("min_ssim");
+    if (!v.is_number() || !(v.get<double>() >= -1.0 && v.get<double>() <= 1.0)) {
+      throw std::invalid_argument(source + ": min_ssim: must be a number in [-1, 1]");
+    }
+    p.min_ssim = v.get<double>();
   }
   if (p.rules.empty() && !p.has_fallback) {
     throw std::invalid_argument(source + ": a profile needs \"default\" or \"channels\"");
@@ -397,6 +405,146 @@ ChannelSelection parse_channel_selection(const std::string& text) {
   }
   return s;
 }
+
+double ssim(const std::vector<double>& x, const std::vector<double>& y, int width, int height,
+            std::vector<double>* map) {
+  const int n = kSsimWindow;
+  if (width < n || height < n) {
+    throw std::invalid_argument("SSIM needs an image of at least " + std::to_string(n) + "x" +
+                                std::to_string(n) + ", got " + std::to_string(width) + "x" +
+                                std::to_string(height));
+  }
+  const auto cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (x.size() != cells || y.size() != cells) {
+    throw std::invalid_argument("SSIM: the images differ in size");
+  }
+  // The 1-D Gaussian weights, normalized to sum 1: the 2-D window is their outer product.
+  std::array<double, kSsimWindow> w{};
+  double total = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double d = i - (n - 1) / 2;
+    w[static_cast<std::size_t>(i)] = math::exp(-d * d / (2.0 * kSsimSigma * kSsimSigma));
+    total += w[static_cast<std::size_t>(i)];
+  }
+  for (double& v : w) v /= total;
+  // Separable weighted moments over every window fully inside the image: rows first, then
+  // columns, each sum in index order.
+  const int out_w = width - n + 1;
+  const int out_h = height - n + 1;
+  const auto index = [](int col, int row, int stride) {
+    return static_cast<std::size_t>(row) * static_cast<std::size_t>(stride) +
+           static_cast<std::size_t>(col);
+  };
+  std::array<std::vector<double>, 5> rows;  // x, y, xx, yy, xy filtered along rows
+  for (auto& r : rows)
+    r.assign(static_cast<std::size_t>(out_w) * static_cast<std::size_t>(height), 0.0);
+  for (int row = 0; row < height; ++row) {
+    for (int col = 0; col < out_w; ++col) {
+      std::array<double, 5> sum{};
+      for (int i = 0; i < n; ++i) {
+        const double a = x[index(col + i, row, width)];
+        const double b = y[index(col + i, row, width)];
+        const double wi = w[static_cast<std::size_t>(i)];
+        sum[0] += wi * a;
+        sum[1] += wi * b;
+        sum[2] += wi * (a * a);
+        sum[3] += wi * (b * b);
+        sum[4] += wi * (a * b);
+      }
+      for (std::size_t k = 0; k < 5; ++k) rows[k][index(col, row, out_w)] = sum[k];
+    }
+  }
+  const double c1 = (kSsimK1 * kSsimDynamicRange) * (kSsimK1 * kSsimDynamicRange);
+  const double c2 = (kSsimK2 * kSsimDynamicRange) * (kSsimK2 * kSsimDynamicRange);
+  if (map != nullptr)
+    map->assign(static_cast<std::size_t>(out_w) * static_cast<std::size_t>(out_h), 0.0);
+  double mean = 0.0;
+  for (int row = 0; row < out_h; ++row) {
+    for (int col = 0; col < out_w; ++col) {
+      std::array<double, 5> m{};
+      for (int i = 0; i < n; ++i) {
+        const double wi = w[static_cast<std::size_t>(i)];
+        for (std::size_t k = 0; k < 5; ++k) m[k] += wi * rows[k][index(col, row + i, out_w)];
+      }
+      const double mx = m[0];
+      const double my = m[1];
+      const double vx = m[2] - mx * mx;
+      const double vy = m[3] - my * my;
+      const double cxy = m[4] - mx * my;
+      const double s =
+          ((2.0 * (mx * my) + c1) * (2.0 * cxy + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+      if (map != nullptr) (*map)[index(col, row, out_w)] = s;
+      mean += s;
+    }
+  }
+  return mean / (static_cast<double>(out_w) * static_cast<double>(out_h));
+}
+
+double ssim_key_luminance(const std::vector<double>& luminance) {
+  double sum = 0.0;
+  for (const double v : luminance) sum += math::log(std::max(v, 0.0) + kSsimLuminanceFloor);
+  return luminance.empty() ? 1.0 : math::exp(sum / static_cast<double>(luminance.size()));
+}
+
+std::vector<double> ssim_display_values(const std::vector<double>& luminance, double key) {
+  std::vector<double> d(luminance.size());
+  const double white = key / kSsimKeyValue;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double y = std::max(luminance[i], 0.0);
+    d[i] = math::pow(y / (y + white), 1.0 / kSsimGamma);
+  }
+  return d;
+}
+
+namespace {
+// The SSIM of a part from its compared channel pairs (golden, candidate).
+SsimResult part_ssim(const std::vector<std::pair<const ExrChannel*, const ExrChannel*>>& pairs,
+                     int width, int height) {
+  SsimResult r;
+  std::array<std::pair<const ExrChannel*, const ExrChannel*>, 4> rgby{};  // R, G, B, Y
+  for (const auto& [gc, cc] : pairs) {
+    if (gc->sampling != 1) continue;
+    const std::string key = channel_alias(gc->name);
+    const std::size_t slot = key == "r" ? 0 : key == "g" ? 1 : key == "b" ? 2 : key == "y" ? 3 : 4;
+    if (slot < 4) rgby[slot] = {gc, cc};
+  }
+  const bool rgb = rgby[0].first && rgby[1].first && rgby[2].first;
+  if (!rgb && !rgby[3].first) return r;
+  r.applies = true;
+  const auto cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  std::vector<double> golden(cells), candidate(cells);
+  bool finite = true;
+  for (std::size_t i = 0; i < cells; ++i) {
+    const auto value = [&](bool candidate_side) {
+      const auto v = [&](std::size_t slot) {
+        const ExrChannel* c = candidate_side ? rgby[slot].second : rgby[slot].first;
+        return static_cast<double>(c->values[i]);
+      };
+      return rgb ? 0.2126 * v(0) + 0.7152 * v(1) + 0.0722 * v(2) : v(3);
+    };
+    golden[i] = value(false);
+    candidate[i] = value(true);
+    finite = finite && std::isfinite(golden[i]) && std::isfinite(candidate[i]);
+  }
+  r.source = rgb ? rgby[0].first->name + "," + rgby[1].first->name + "," + rgby[2].first->name
+                 : rgby[3].first->name;
+  if (!finite) {
+    r.reason = "non-finite luminance";
+    return r;
+  }
+  if (width < kSsimWindow || height < kSsimWindow) {
+    r.reason = "smaller than the 11x11 window";
+    return r;
+  }
+  r.key_luminance = ssim_key_luminance(golden);
+  r.value = ssim(ssim_display_values(golden, r.key_luminance),
+                 ssim_display_values(candidate, r.key_luminance), width, height);
+  r.windows = static_cast<std::size_t>(width - kSsimWindow + 1) *
+              static_cast<std::size_t>(height - kSsimWindow + 1);
+  r.computed = true;
+  return r;
+}
+}  // namespace
 
 PartResult compare_part(const ExrPart& golden, const ExrPart& candidate,
                         const ChannelSelection& selection, const ThresholdProfile& profile) {
@@ -493,6 +641,12 @@ PartResult compare_part(const ExrPart& golden, const ExrPart& candidate,
   for (const char f : failing) failing_pixels += f != 0 ? 1 : 0;
   result.failing_share =
       pixels > 0 ? static_cast<double>(failing_pixels) / static_cast<double>(pixels) : 0.0;
+  result.ssim = part_ssim(pairs, g.width, g.height);
+  result.min_ssim = profile.min_ssim;
+  if (result.min_ssim && result.ssim.applies &&
+      !(result.ssim.computed && result.ssim.value >= *result.min_ssim)) {
+    result.pass = false;
+  }
   return result;
 }
 
@@ -530,12 +684,19 @@ Comparison compare_parts(const std::vector<ExrPart>& golden, const std::vector<E
         result.parts_not_compared.push_back(part_label(g));
     }
   }
+  bool any_ssim = false;
   for (const auto& [g, c] : matched) {
     PartResult p = compare_part(*g, *c, selection, profile);
+    any_ssim = any_ssim || p.ssim.applies;
     for (const ChannelResult& ch : p.channels)
       result.nonfinite_mismatches += ch.nonfinite_mismatches;
     if (!p.pass) result.pass = false;
     result.parts.push_back(std::move(p));
+  }
+  if (profile.min_ssim && !any_ssim) {
+    throw std::invalid_argument("profile '" + profile.name +
+                                "' sets min_ssim, but no compared part " +
+                                "has R, G, B (or Y) channels at full resolution for an SSIM");
   }
   if (result.nonfinite_mismatches > 0) result.pass = false;
   return result;
@@ -623,6 +784,24 @@ std::string comparison_json(const Comparison& c, const std::string& golden_path,
                       {"result", p.pass ? "pass" : "fail"},
                       {"failing_pixels_share", p.failing_share},
                       {"not_compared", p.not_compared}};
+    if (p.ssim.applies) {
+      nlohmann::json sj{
+          {"value", p.ssim.computed ? nlohmann::json(p.ssim.value) : nlohmann::json()},
+          {"channels", p.ssim.source},
+          {"luminance", "Y = 0.2126 R + 0.7152 G + 0.0722 B (or Y), negatives as 0"},
+          {"mapping",
+           "t = Y/(Y + key/0.18), d = t^(1/2.2), key = the golden's "
+           "exp(mean ln(Y + 1e-3))"},
+          {"key_luminance", p.ssim.key_luminance},
+          {"dynamic_range", kSsimDynamicRange},
+          {"window", "11x11 Gaussian, sigma 1.5, valid positions only"},
+          {"K1", kSsimK1},
+          {"K2", kSsimK2},
+          {"windows", p.ssim.windows}};
+      if (!p.ssim.computed) sj["reason"] = p.ssim.reason;
+      if (p.min_ssim) sj["min_ssim"] = *p.min_ssim;
+      pj["ssim"] = sj;
+    }
     pj["channels"] = nlohmann::json::array();
     for (const ChannelResult& r : p.channels) {
       nlohmann::json cj{{"golden", r.golden_name},
@@ -711,6 +890,22 @@ std::string comparison_text(const Comparison& c) {
       }
       if (r.nonfinite_mismatches > 0) {
         out << "   NON-FINITE MISMATCHES: " << r.nonfinite_mismatches;
+      }
+      out << '\n';
+    }
+    if (p.ssim.applies) {
+      out << "SSIM (" << p.ssim.source << " luminance, tone-mapped by the golden's key "
+          << short_number(p.ssim.key_luminance) << "): ";
+      if (p.ssim.computed) {
+        char value[32];
+        std::snprintf(value, sizeof value, "%.6f", p.ssim.value);
+        out << value;
+      } else {
+        out << "not computed (" << p.ssim.reason << ")";
+      }
+      if (p.min_ssim) {
+        out << ", min_ssim " << short_number(*p.min_ssim) << ": "
+            << (p.ssim.computed && p.ssim.value >= *p.min_ssim ? "pass" : "FAIL");
       }
       out << '\n';
     }

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,14 +45,18 @@ struct ThresholdProfile {
   std::vector<ThresholdRule> rules;
   ChannelThreshold fallback;
   bool has_fallback = true;
+  // The lowest SSIM (see below) a part with an SSIM may have; with it set, a comparison where no
+  // part has one is refused, and a part whose SSIM cannot be computed fails.
+  std::optional<double> min_ssim;
 };
 bool glob_match(const std::string& pattern, const std::string& text);
 // Throws std::invalid_argument naming the part and channel when nothing covers them.
 ChannelThreshold threshold_for(const ThresholdProfile& profile, const std::string& part,
                                const std::string& channel);
 // A profile file (JSON, reference/profiles/*.json): {"name", "default": {abs, rel, floor, ulp,
-// max_fail_share}, "channels": [{"part", "match", abs, rel, floor, ulp, max_fail_share}, ...]}
-// plus free documentation keys. Throws std::invalid_argument naming the file and the key.
+// max_fail_share}, "channels": [{"part", "match", abs, rel, floor, ulp, max_fail_share}, ...],
+// "min_ssim"} plus free documentation keys. Throws std::invalid_argument naming the file and the
+// key.
 ThresholdProfile parse_profile(const std::string& json_text, const std::string& source);
 ThresholdProfile read_profile(const std::string& path);
 
@@ -111,6 +116,49 @@ struct ChannelResult {
   bool pass = true;
 };
 
+// SSIM, the structural similarity of Wang, Bovik, Sheikh and Simoncelli 2004 ("Image quality
+// assessment: from error visibility to structural similarity", IEEE TIP 13(4)), of a rendered
+// image's luminance:
+//   luminance  Y = 0.2126 R + 0.7152 G + 0.0722 B (linear sRGB, D65: the render's primaries) of
+//              the compared R, G, B channels, or the compared Y channel; negative values as 0;
+//   HDR → [0, 1] the same mapping for both images, keyed by the golden: Reinhard et al. 2002's
+//              global operator t = Y/(Y + Ȳ/0.18) with the golden's log-average luminance
+//              Ȳ = exp(mean ln(Y_g + 10⁻³ cd/m²)), then a display encoding d = t^(1/2.2);
+//   SSIM       per 11 × 11 window (every position fully inside the image, no padding) with
+//              Gaussian weights σ = 1.5 (normalized to sum 1): means μ, variances σ², covariance
+//              σ_xy as weighted moments (no sample correction), and
+//              SSIM = (2μ_xμ_y + C1)(2σ_xy + C2) / ((μ_x² + μ_y² + C1)(σ_x² + σ_y² + C2)),
+//              C1 = (0.01 L)², C2 = (0.03 L)², dynamic range L = 1; the image's SSIM is the mean
+//              over the windows. SSIM(x, x) = 1 exactly; 1 is identity, lower is worse.
+// Computed in double with a fixed operation order (deterministic) by compare_part for a part
+// whose compared channels include R, G, B (or Y) at full resolution, at least 11 × 11.
+inline constexpr int kSsimWindow = 11;
+inline constexpr double kSsimSigma = 1.5;
+inline constexpr double kSsimK1 = 0.01;
+inline constexpr double kSsimK2 = 0.03;
+inline constexpr double kSsimDynamicRange = 1.0;
+inline constexpr double kSsimKeyValue = 0.18;        // Reinhard's key a
+inline constexpr double kSsimLuminanceFloor = 1e-3;  // δ of the log average [cd/m²]
+inline constexpr double kSsimGamma = 2.2;
+struct SsimResult {
+  bool applies = false;        // the part has R, G, B (or Y) compared at full resolution
+  bool computed = false;       // and its SSIM could be computed (else `reason`)
+  double value = 0.0;          // mean SSIM over the windows
+  double key_luminance = 0.0;  // Ȳ of the golden [cd/m²]
+  std::string source;          // "R,G,B" or "Y" (the golden's channel names)
+  std::string reason;          // why it was not computed
+  std::size_t windows = 0;
+};
+// The mean SSIM of two luminance images (width × height, row-major) already in [0, 1]; also the
+// SSIM of every window position ((width − 10) × (height − 10), row-major) when `map` is given.
+// Throws std::invalid_argument when the image is smaller than 11 × 11 or the sizes differ.
+double ssim(const std::vector<double>& x, const std::vector<double>& y, int width, int height,
+            std::vector<double>* map = nullptr);
+// The display values d in [0, 1] of a luminance image, keyed by `key` (Ȳ above).
+std::vector<double> ssim_display_values(const std::vector<double>& luminance, double key);
+// Ȳ = exp(mean ln(Y + δ)) of a golden luminance image.
+double ssim_key_luminance(const std::vector<double>& luminance);
+
 struct PartResult {
   std::string name;
   int level_x = 0, level_y = 0;
@@ -118,6 +166,8 @@ struct PartResult {
   std::vector<ChannelResult> channels;
   std::vector<std::string> not_compared;  // golden channels without a candidate counterpart
   double failing_share = 0.0;             // pixels failing in any full-resolution channel
+  SsimResult ssim;
+  std::optional<double> min_ssim;  // the profile's threshold, when it has one
   bool pass = true;
 };
 

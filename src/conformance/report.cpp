@@ -444,6 +444,22 @@ void write_report(const std::string& directory, const std::string& golden_name,
            << "</td></tr>\n";
     }
     html << "</table>\n";
+    if (p.ssim.applies) {
+      // The perceptual metric beside the numeric ones (compare.h: SSIM).
+      char value[32];
+      std::snprintf(value, sizeof value, "%.6f", p.ssim.value);
+      html << "<p class=\"ssim\">SSIM (Wang et al. 2004; luminance of " << escape(p.ssim.source)
+           << ", tone-mapped by the golden's log-average " << short_number(p.ssim.key_luminance)
+           << " cd/m&sup2;, 11&times;11 Gaussian window &sigma; 1.5, L = 1): <b>"
+           << (p.ssim.computed ? std::string(value)
+                               : "not computed (" + escape(p.ssim.reason) + ")")
+           << "</b>";
+      if (p.min_ssim) {
+        html << ", min_ssim " << short_number(*p.min_ssim) << ": "
+             << (p.ssim.computed && p.ssim.value >= *p.min_ssim ? "pass" : "FAIL");
+      }
+      html << "</p>\n";
+    }
     if (!p.not_compared.empty()) {
       html << "<p>golden channels not compared:";
       for (const std::string& n : p.not_compared) html << ' ' << escape(n);
