@@ -133,4 +133,18 @@ ProjectedGrid project_grid(const Camera& camera, const ProjectedGridSettings& s)
   return grid;
 }
 
+std::vector<std::array<std::uint32_t, 3>> grid_triangles(const ProjectedGrid& grid) {
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  if (!grid.visible) return triangles;
+  const auto c = static_cast<std::uint32_t>(grid.columns);
+  for (int j = 0; j + 1 < grid.rows; ++j) {
+    for (int i = 0; i + 1 < grid.columns; ++i) {
+      const auto k = static_cast<std::uint32_t>(j * grid.columns + i);
+      triangles.push_back({k, k + 1, k + c});
+      triangles.push_back({k + 1, k + c + 1, k + c});
+    }
+  }
+  return triangles;
+}
+
 }  // namespace oceanref

@@ -72,14 +72,7 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
       g.screen[k] = {s.x, s.y, s.z};
     }
   });
-  for (int j = 0; j + 1 < g.grid.rows; ++j) {
-    for (int i = 0; i + 1 < g.grid.columns; ++i) {
-      const auto k = static_cast<std::uint32_t>(j * g.grid.columns + i);
-      const auto c = static_cast<std::uint32_t>(g.grid.columns);
-      g.triangles.push_back({k, k + 1, k + c});
-      g.triangles.push_back({k + 1, k + c + 1, k + c});
-    }
-  }
+  g.triangles = grid_triangles(g.grid);
   return g;
 }
 
@@ -262,6 +255,13 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   image.unconverged_samples = unconverged;
   image.integrand_evaluations = evaluations;
   return image;
+}
+
+SurfaceMesh surface_mesh(const RenderJob& job) {
+  const ReferenceFpEnvironment fp;
+  const FrameFields fields = frame_fields(job);
+  Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
+  return {std::move(g.grid), std::move(g.world), std::move(g.triangles)};
 }
 
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,

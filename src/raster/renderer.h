@@ -76,6 +76,17 @@ struct RenderTimes {
 RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
                      RenderTimes* times = nullptr);
 
+// The mesh render rasterizes for the job's frame: the projected grid (its displacement bound
+// the ocean's height_bound), every vertex on the displaced surface, (x0 + Σu_iD_i, Σ η_i, z0 +
+// Σu_iD_i) with the fields read as the shading reads them (combine_shading_at), and the grid's
+// triangles (grid_triangles).
+struct SurfaceMesh {
+  ProjectedGrid grid;
+  std::vector<glm::dvec3> world;  // [j·columns + i], like grid.base
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+SurfaceMesh surface_mesh(const RenderJob& job);
+
 // Everything behind one sample, for `oceanref probe`.
 struct SampleProbe {
   double image_x = 0.0, image_y = 0.0;  // the sample position [pixels]
