@@ -257,6 +257,16 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   return image;
 }
 
+Vec3 resolve_pixel(const std::vector<SampleProbe>& samples) {
+  // As render's resolve: per_sample = 1/(S·S), accumulated from 0 in sample order.
+  const double per_sample = 1.0 / static_cast<double>(samples.size());
+  Vec3 pixel{};
+  for (const SampleProbe& p : samples) {
+    for (std::size_t c = 0; c < 3; ++c) pixel[c] += per_sample * p.radiance[c];
+  }
+  return pixel;
+}
+
 SurfaceMesh surface_mesh(const RenderJob& job) {
   const ReferenceFpEnvironment fp;
   const FrameFields fields = frame_fields(job);

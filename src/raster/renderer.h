@@ -103,8 +103,12 @@ struct SampleProbe {
   double whitecap_coverage = 0.0;
   Vec3 lighting_error{};  // of `radiance` (see RenderedImage::lighting_error)
 };
-// The shading of one sample of the image (its fragment from a full raster pass).
+// The shading of each sample of one pixel (its fragment from a full raster pass), in the
+// order render averages them: sample rows top to bottom, each left to right.
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
                                      int pixel_x, int pixel_y);
+// The pixel's radiance from its samples as render resolves it: Σ (1/S²)·radiance in sample
+// order, from 0 — the same bits as RenderedImage::radiance for that pixel.
+Vec3 resolve_pixel(const std::vector<SampleProbe>& samples);
 
 }  // namespace oceanref
