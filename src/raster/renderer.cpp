@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
 #include "spectrum/moments.h"
@@ -160,6 +161,8 @@ WindSlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSett
 
 RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
                      RenderTimes* times) {
+  OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
+                   "a render job names its ocean and has >= 1 sample per axis");
   const ReferenceFpEnvironment fp;
   auto clock = std::chrono::steady_clock::now();
   const auto lap = [&](double RenderTimes::*stage) {
@@ -258,6 +261,7 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
 }
 
 Vec3 resolve_pixel(const std::vector<SampleProbe>& samples) {
+  OCEANREF_EXPECTS(!samples.empty(), "a pixel has at least one sample");
   // As render's resolve: per_sample = 1/(S·S), accumulated from 0 in sample order.
   const double per_sample = 1.0 / static_cast<double>(samples.size());
   Vec3 pixel{};
@@ -276,6 +280,12 @@ SurfaceMesh surface_mesh(const RenderJob& job) {
 
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
                                      int pixel_x, int pixel_y) {
+  OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
+                   "a render job names its ocean and has >= 1 sample per axis");
+  OCEANREF_EXPECTS(
+      0 <= pixel_x && pixel_x < job.camera.width && 0 <= pixel_y && pixel_y < job.camera.height,
+      "pixel (" + std::to_string(pixel_x) + ", " + std::to_string(pixel_y) + ") inside the " +
+          std::to_string(job.camera.width) + " x " + std::to_string(job.camera.height) + " image");
   const ReferenceFpEnvironment fp;
   const FrameFields fields = frame_fields(job);
   const Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
