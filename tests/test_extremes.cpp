@@ -1,4 +1,6 @@
-// Numerical stability at the edges of the parameter space: every value finite and ≥ 0.
+// Numerical stability at the edges of the parameter space: every value finite and ≥ 0, and the
+// spectra exactly 0 at the ends (their k → 0 and k → ∞ limits; the asymptotic forms are checked
+// in test_limits.cpp).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -61,6 +63,15 @@ TEST_CASE("extremes sweep: U10 0.1..60 m/s, fetch 1..1e7 m, depth 0.01 m..inf, o
                 CHECK(finite_non_negative(spreading_at_wavenumber(s, x, 3.1)));
                 CHECK(finite_non_negative(wavevector_spectrum(s, x, -0.5 * x)));
                 CHECK(finite_non_negative(wavevector_spectrum(s, 0.0, x)));
+                // The limits, not only finiteness: every model's low-frequency cut-off is
+                // exp(−c(k_p/k)²) or steeper, 0 in double precision for k, ω ≤ 1e-10 (k_p ≥
+                // 2.7e-3 rad/m at 60 m/s); the tails fall as k⁻³ or faster, 0 beyond 1e300.
+                if (x <= 1e-10 || x >= 1e300) {
+                  CHECK(frequency_spectrum(s, x) == 0.0);
+                  CHECK(wavenumber_spectrum(s, x) == 0.0);
+                  CHECK(wavevector_spectrum(s, x, -0.5 * x) == 0.0);
+                  CHECK(wavevector_spectrum(s, 0.0, x) == 0.0);
+                }
                 ++evaluated;
               }
             }

@@ -132,9 +132,18 @@ TEST_CASE("projected grid: flat sea vertices are ray-plane hits; viewing cases")
   const Camera down = make_camera({0, 10, 0}, {5, 0, 30}, {0, 1, 0}, 50 * deg, 320, 180);
   const ProjectedGrid g = project_grid(down, s);
   REQUIRE(g.visible);
-  for (const glm::dvec2& b : g.base) {
-    CHECK(std::isfinite(b.x));
-    CHECK(std::isfinite(b.y));
+  // The vertices are the hits of the projector's rays through a regular grid of its image: the
+  // rays of one grid row span a plane through the projector, which meets the sea plane in a
+  // straight line, so each row's vertices, stored at [j·columns + i], are collinear (to
+  // rounding: 1e-9 of the row's extent); a wrong layout scatters them.
+  for (int j = 0; j < s.rows; ++j) {
+    const auto at = [&](int i) { return g.base[static_cast<std::size_t>(j * s.columns + i)]; };
+    const glm::dvec2 a = at(0), d = at(s.columns - 1) - a;
+    REQUIRE(glm::length(d) > 0.0);
+    for (int i = 1; i + 1 < s.columns; ++i) {
+      const glm::dvec2 e = at(i) - a;
+      CHECK(std::fabs(d.x * e.y - d.y * e.x) <= 1e-9 * glm::length(d) * glm::length(d));
+    }
   }
   // Looking up from above the water, well above the volume: the sea may be out of view.
   const Camera sky = make_camera({0, 10, 0}, {0, 40, 10}, {0, 1, 0}, 30 * deg, 320, 180);

@@ -131,7 +131,6 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
            "sun_R,sun_G,sun_B,sky_R,sky_G,sky_B,sea_R,sea_G,sea_B,foam_coverage,R,G,B,F_mean_error,"
            "sun_error_R,sun_error_G,sun_error_B,sky_error_R,sky_error_G,sky_error_B,sea_error_R,"
            "sea_error_G,sea_error_B,error_R,error_G,error_B,evaluations,converged\n";
-    Vec3 pixel{};
     for (std::size_t i = 0; i < samples.size(); ++i) {
       const SampleProbe& s = samples[i];
       const double values[] = {s.depth,
@@ -186,9 +185,9 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
           << (s.hit ? 1 : 0);
       for (const double v : values) out << ',' << format_number(v);
       out << '\n';
-      for (std::size_t c = 0; c < 3; ++c)
-        pixel[c] += s.radiance[c] / static_cast<double>(samples.size());
     }
+    // The pixel exactly as render writes it (its float32 is the EXR's value).
+    const Vec3 pixel = resolve_pixel(samples);
     out << "pixel,R,G,B\npixel," << format_number(pixel[0]) << ',' << format_number(pixel[1]) << ','
         << format_number(pixel[2]) << '\n';
   };

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 
+#include "core/check.h"
 #include "core/math.h"
 
 namespace oceanref {
@@ -41,6 +42,9 @@ std::array<glm::dvec3, 8> frustum_corners(const Camera& c, double near, double f
 }  // namespace
 
 ProjectedGrid project_grid(const Camera& camera, const ProjectedGridSettings& s) {
+  OCEANREF_EXPECTS(s.columns >= 1 && s.rows >= 1 && s.displacement_bound >= 0.0 &&
+                       s.margin >= 0.0 && s.near > 0.0 && s.far > s.near,
+                   "grid settings: columns, rows >= 1, bound and margin >= 0, 0 < near < far");
   ProjectedGrid grid;
   grid.columns = s.columns;
   grid.rows = s.rows;
@@ -131,6 +135,20 @@ ProjectedGrid project_grid(const Camera& camera, const ProjectedGridSettings& s)
   }
   grid.visible = true;
   return grid;
+}
+
+std::vector<std::array<std::uint32_t, 3>> grid_triangles(const ProjectedGrid& grid) {
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  if (!grid.visible) return triangles;
+  const auto c = static_cast<std::uint32_t>(grid.columns);
+  for (int j = 0; j + 1 < grid.rows; ++j) {
+    for (int i = 0; i + 1 < grid.columns; ++i) {
+      const auto k = static_cast<std::uint32_t>(j * grid.columns + i);
+      triangles.push_back({k, k + 1, k + c});
+      triangles.push_back({k + 1, k + c + 1, k + c});
+    }
+  }
+  return triangles;
 }
 
 }  // namespace oceanref

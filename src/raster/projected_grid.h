@@ -15,6 +15,8 @@
 //    the projector NDC point, unprojected to a line and intersected with y = 0.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -41,5 +43,10 @@ struct ProjectedGrid {
 };
 
 ProjectedGrid project_grid(const Camera& camera, const ProjectedGridSettings& settings);
+
+// The triangles of the grid's mesh (vertex indices j·columns + i), two per cell (i, j):
+// (k, k + 1, k + columns) and (k + 1, k + columns + 1, k + columns), cells row by row. Empty for
+// an invisible grid.
+std::vector<std::array<std::uint32_t, 3>> grid_triangles(const ProjectedGrid& grid);
 
 }  // namespace oceanref

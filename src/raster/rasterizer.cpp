@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/check.h"
+
 namespace oceanref {
 
 namespace {
@@ -36,7 +38,19 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
                int first_row, int last_row, double near, std::vector<Fragment>& fragments) {
   const int columns = grid.columns();
+  OCEANREF_EXPECTS(
+      grid.samples_per_axis >= 1 && fragments.size() == static_cast<std::size_t>(columns) *
+                                                            static_cast<std::size_t>(grid.rows()),
+      "one fragment per sample of the grid: " + std::to_string(fragments.size()) + " for " +
+          std::to_string(columns) + " x " + std::to_string(grid.rows()));
+  OCEANREF_EXPECTS(0 <= first_row && first_row <= last_row && last_row <= grid.rows(),
+                   "sample rows [" + std::to_string(first_row) + ", " + std::to_string(last_row) +
+                       ") inside [0, " + std::to_string(grid.rows()) + ")");
   for (std::size_t t = 0; t < triangles.size(); ++t) {
+    OCEANREF_EXPECTS(triangles[t][0] < vertices.size() && triangles[t][1] < vertices.size() &&
+                         triangles[t][2] < vertices.size(),
+                     "triangle " + std::to_string(t) + " indexes a vertex beyond the " +
+                         std::to_string(vertices.size()) + " given");
     const ScreenVertex& v0 = vertices[triangles[t][0]];
     const ScreenVertex& v1 = vertices[triangles[t][1]];
     const ScreenVertex& v2 = vertices[triangles[t][2]];

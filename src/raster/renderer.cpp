@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
 #include "spectrum/moments.h"
@@ -72,14 +73,7 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
       g.screen[k] = {s.x, s.y, s.z};
     }
   });
-  for (int j = 0; j + 1 < g.grid.rows; ++j) {
-    for (int i = 0; i + 1 < g.grid.columns; ++i) {
-      const auto k = static_cast<std::uint32_t>(j * g.grid.columns + i);
-      const auto c = static_cast<std::uint32_t>(g.grid.columns);
-      g.triangles.push_back({k, k + 1, k + c});
-      g.triangles.push_back({k + 1, k + c + 1, k + c});
-    }
-  }
+  g.triangles = grid_triangles(g.grid);
   return g;
 }
 
@@ -167,6 +161,8 @@ WindSlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSett
 
 RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
                      RenderTimes* times) {
+  OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
+                   "a render job names its ocean and has >= 1 sample per axis");
   const ReferenceFpEnvironment fp;
   auto clock = std::chrono::steady_clock::now();
   const auto lap = [&](double RenderTimes::*stage) {
@@ -264,8 +260,32 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   return image;
 }
 
+Vec3 resolve_pixel(const std::vector<SampleProbe>& samples) {
+  OCEANREF_EXPECTS(!samples.empty(), "a pixel has at least one sample");
+  // As render's resolve: per_sample = 1/(S·S), accumulated from 0 in sample order.
+  const double per_sample = 1.0 / static_cast<double>(samples.size());
+  Vec3 pixel{};
+  for (const SampleProbe& p : samples) {
+    for (std::size_t c = 0; c < 3; ++c) pixel[c] += per_sample * p.radiance[c];
+  }
+  return pixel;
+}
+
+SurfaceMesh surface_mesh(const RenderJob& job) {
+  const ReferenceFpEnvironment fp;
+  const FrameFields fields = frame_fields(job);
+  Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
+  return {std::move(g.grid), std::move(g.world), std::move(g.triangles)};
+}
+
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
                                      int pixel_x, int pixel_y) {
+  OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
+                   "a render job names its ocean and has >= 1 sample per axis");
+  OCEANREF_EXPECTS(
+      0 <= pixel_x && pixel_x < job.camera.width && 0 <= pixel_y && pixel_y < job.camera.height,
+      "pixel (" + std::to_string(pixel_x) + ", " + std::to_string(pixel_y) + ") inside the " +
+          std::to_string(job.camera.width) + " x " + std::to_string(job.camera.height) + " image");
   const ReferenceFpEnvironment fp;
   const FrameFields fields = frame_fields(job);
   const Geometry g = build_geometry(job, fields, height_bound(*job.ocean));

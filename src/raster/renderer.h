@@ -76,6 +76,17 @@ struct RenderTimes {
 RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
                      RenderTimes* times = nullptr);
 
+// The mesh render rasterizes for the job's frame: the projected grid (its displacement bound
+// the ocean's height_bound), every vertex on the displaced surface, (x0 + Σu_iD_i, Σ η_i, z0 +
+// Σu_iD_i) with the fields read as the shading reads them (combine_shading_at), and the grid's
+// triangles (grid_triangles).
+struct SurfaceMesh {
+  ProjectedGrid grid;
+  std::vector<glm::dvec3> world;  // [j·columns + i], like grid.base
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+SurfaceMesh surface_mesh(const RenderJob& job);
+
 // Everything behind one sample, for `oceanref probe`.
 struct SampleProbe {
   double image_x = 0.0, image_y = 0.0;  // the sample position [pixels]
@@ -92,8 +103,12 @@ struct SampleProbe {
   double whitecap_coverage = 0.0;
   Vec3 lighting_error{};  // of `radiance` (see RenderedImage::lighting_error)
 };
-// The shading of one sample of the image (its fragment from a full raster pass).
+// The shading of each sample of one pixel (its fragment from a full raster pass), in the
+// order render averages them: sample rows top to bottom, each left to right.
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
                                      int pixel_x, int pixel_y);
+// The pixel's radiance from its samples as render resolves it: Σ (1/S²)·radiance in sample
+// order, from 0 — the same bits as RenderedImage::radiance for that pixel.
+Vec3 resolve_pixel(const std::vector<SampleProbe>& samples);
 
 }  // namespace oceanref

@@ -4,6 +4,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/math.h"
 #include "spectrum/quadrature.h"
 
@@ -26,6 +27,11 @@ Vec3 normalized(const Vec3& v) {
 Vec3 combine(double a, const Vec3& u, double b, const Vec3& v, double c, const Vec3& w) {
   return {a * u[0] + b * v[0] + c * w[0], a * u[1] + b * v[1] + c * w[1],
           a * u[2] + b * v[2] + c * w[2]};
+}
+// A direction the formulas read as a unit vector (its dot products as cosines); 1e-6 in |d|²
+// admits any rounding of a normalization and catches a vector that was never normalized.
+bool is_unit(const Vec3& d) {
+  return std::fabs(dot(d, d) - 1.0) <= 1e-6;
 }
 }  // namespace
 
@@ -102,6 +108,9 @@ double fresnel_reflectance(double cos_i, FresnelForm form) {
 }
 
 ViewTerms view_terms(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, ErfcForm form) {
+  OCEANREF_EXPECTS(is_unit(view) && is_unit(f.normal), "view and normal are unit vectors");
+  OCEANREF_EXPECTS(s.x > 0.0 && s.y > 0.0, "slope variances are positive, got " +
+                                               std::to_string(s.x) + ", " + std::to_string(s.y));
   ViewTerms v;
   v.cos_theta = dot(view, f.normal);
   v.sigma2 = directional_slope_variance(view, f, s);
@@ -155,6 +164,8 @@ std::array<Vec3, 2> sun_disk_axes(const Vec3& sun) {
 }
 
 std::vector<SunDiskNode> sun_disk_nodes(const Vec3& sun, double radius, const QuadratureRule& r) {
+  OCEANREF_EXPECTS(is_unit(sun) && radius > 0.0 && r.nodes.size() == r.weights.size(),
+                   "a unit sun direction, a positive radius and a rule of nodes and weights");
   if (r.nodes.empty()) return {{sun, 2.0 * kPi * (1.0 - math::cos(radius))}};
   const auto [u, w] = sun_disk_axes(sun);
   const int azimuths = 4 * static_cast<int>(r.nodes.size());
@@ -189,6 +200,9 @@ double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, in
 
 double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
                     const QuadratureRule& g, const BrdfOptions& options) {
+  OCEANREF_EXPECTS(is_unit(view) && s.x >= 0.0 && s.y >= 0.0 && !g.nodes.empty() &&
+                       g.nodes.size() == g.weights.size(),
+                   "a unit view, slope variances >= 0 and a Gauss-Hermite rule");
   const double vx = dot(view, f.tangent_x);
   const double vy = dot(view, f.tangent_y);
   const double vn = dot(view, f.normal);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/math.h"
 #include "spectrum/quadrature.h"
 
@@ -102,6 +103,9 @@ Vec3 reflected_sky_filtered(const Vec3& view, const SurfaceFrame& f, SlopeVarian
 }
 
 Vec3 refracted_sea(double mean_fresnel_value, const Vec3& sea_colour, const Vec3& e_sky) {
+  OCEANREF_EXPECTS(
+      mean_fresnel_value >= 0.0 && mean_fresnel_value <= 1.0,
+      "a mean Fresnel reflectance in [0, 1], got " + std::to_string(mean_fresnel_value));
   Vec3 l{};
   for (std::size_t k = 0; k < 3; ++k) {
     l[k] = (1.0 - mean_fresnel_value) * sea_colour[k] * e_sky[k] / std::numbers::pi;
@@ -110,6 +114,7 @@ Vec3 refracted_sea(double mean_fresnel_value, const Vec3& sea_colour, const Vec3
 }
 
 double whitecap_coverage(double mean, double variance, double threshold) {
+  OCEANREF_EXPECTS(variance >= 0.0, "a variance >= 0, got " + std::to_string(variance));
   if (!(variance > 0.0)) return mean < threshold ? 1.0 : 0.0;
   return 0.5 * math::erfc((mean - threshold) / std::sqrt(2.0 * variance));
 }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/check.h"
 #include "core/math.h"
 
 namespace oceanref {
@@ -95,6 +96,7 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
 
 WindSlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
                                       const QuadratureTolerance& tolerance) {
+  OCEANREF_EXPECTS(k_lo >= 0.0, "a band starts at a wavenumber >= 0, got " + std::to_string(k_lo));
   WindSlopeVariance out;
   if (!(k_hi > k_lo)) return out;
   std::vector<double> b{k_lo};

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/math.h"
 #include "waves/fft.h"
 
@@ -145,6 +146,8 @@ LatticeFields direct_sum_on_lattice(const PatternSpectrum& s, const std::vector<
                                     int points, double spacing, const std::vector<Field>& fields,
                                     bool ddz_dx, int threads) {
   const int n = s.pattern.resolution;
+  OCEANREF_EXPECTS(points >= 1 && spacing > 0.0 && h.size() == grid_cells(n),
+                   "a lattice of >= 1 points with positive spacing and h(k, t) of N x N entries");
   const auto np = static_cast<std::size_t>(points);
   // The bases along one axis at the lattice positions: [index a][point m].
   std::vector<Complex> value(static_cast<std::size_t>(n) * np), derivative(value.size());

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/check.h"
 #include "core/math.h"
 
 // KissFFT's twiddle factors from the portable cosine and sine (waves/kissfft_portable.c).
@@ -49,6 +50,9 @@ void forward_fft_2d(std::vector<Complex>& data, int n, int threads) {
 }
 
 void fft_2d(std::vector<Complex>& data, int n, int threads, bool inverse) {
+  OCEANREF_EXPECTS(
+      n >= 1 && data.size() == static_cast<std::size_t>(n) * static_cast<std::size_t>(n),
+      "fft_2d: " + std::to_string(data.size()) + " values for N = " + std::to_string(n));
   const KissConfig config(n, inverse);
   const auto stride = static_cast<std::size_t>(n);
   parallel_for(n, threads, [&](int row) {

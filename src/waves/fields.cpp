@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/check.h"
 #include "waves/fft.h"
 
 namespace oceanref {
@@ -65,6 +66,9 @@ int synthesize_fields(const std::vector<Complex>& h, const PatternSpectrum& s,
 void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time,
                         int threads, CascadeFields& out, SynthesisWorkspace& work, InverseFft2d fft,
                         SynthesisTimes* times) {
+  OCEANREF_EXPECTS(
+      low.pattern.size == high.pattern.size && low.pattern.resolution <= high.pattern.resolution,
+      "the low and high patterns of one cascade: the same size L and N_l <= N_h");
   out.size = high.pattern.size;
   out.low_resolution = low.pattern.resolution;
   out.high_resolution = high.pattern.resolution;

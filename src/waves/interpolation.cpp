@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/math.h"
 #include "waves/realization.h"
 
@@ -33,6 +34,14 @@ GridPoint locate(int cells, double size, double x, double z) {
 int wrap_index(int i, int n) {
   return (i % n + n) % n;
 }
+
+// A periodic grid as the readers below index it: N ≥ 1 cells of a positive size, N² values.
+void expect_grid(const std::vector<double>& grid, int n, double size) {
+  OCEANREF_EXPECTS(n >= 1 && grid.size() == grid_cells(n) && size > 0.0,
+                   "a periodic grid of N x N values and positive size; N = " + std::to_string(n) +
+                       ", " + std::to_string(grid.size()) + " values, size " +
+                       std::to_string(size));
+}
 }  // namespace
 
 std::array<double, 4> catmull_rom_weights(double t) {
@@ -46,6 +55,7 @@ std::array<double, 4> catmull_rom_weight_derivatives(double t) {
 }
 
 double sample_periodic(const std::vector<double>& grid, int n, double size, double x, double z) {
+  expect_grid(grid, n, size);
   const GridPoint p = locate(n, size, x, z);
   const int m1 = (p.m + 1) % n;
   const int n1 = (p.n + 1) % n;
@@ -57,6 +67,7 @@ double sample_periodic(const std::vector<double>& grid, int n, double size, doub
 
 double sample_periodic_bicubic(const std::vector<double>& grid, int n, double size, double x,
                                double z) {
+  expect_grid(grid, n, size);
   const GridPoint p = locate(n, size, x, z);
   if (p.fu == 0.0 && p.fv == 0.0) return grid[grid_offset(p.m, p.n, n)];
   const std::array<double, 4> wu = catmull_rom_weights(p.fu);
@@ -75,6 +86,7 @@ double sample_periodic_bicubic(const std::vector<double>& grid, int n, double si
 
 GridSample sample_periodic_gradient(const std::vector<double>& grid, int n, double size, double x,
                                     double z, Interpolation mode) {
+  expect_grid(grid, n, size);
   const GridPoint p = locate(n, size, x, z);
   const double inverse_spacing = n / size;
   const auto at = [&](int m, int k) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/fp_environment.h"
 #include "waves/direct_sum.h"
 #include "waves/fft.h"
@@ -72,6 +73,9 @@ PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fie
                        const std::vector<EvolvedCascade>& evolved, double x, double z,
                        Interpolation mode) {
   if (mode == Interpolation::direct) return combine_direct(ocean, evolved, x, z);
+  OCEANREF_EXPECTS(fields.size() == ocean.cascades.size(),
+                   "one field set per cascade: " + std::to_string(fields.size()) + " for " +
+                       std::to_string(ocean.cascades.size()));
   PointFields sum;
   for (std::size_t i = 0; i < fields.size(); ++i) {
     add_cascade(sum, cascade_from_grids(fields[i], x, z, mode), ocean.cascades[i].choppiness);
@@ -107,6 +111,10 @@ PointFields combine_direct(const Ocean& ocean, double x, double z, double time) 
 
 PointFields combine_direct(const Ocean& ocean, const std::vector<EvolvedCascade>& evolved, double x,
                            double z) {
+  OCEANREF_EXPECTS(
+      evolved.size() == ocean.cascades.size(),
+      "one evolved spectrum per cascade (evolve_ocean): " + std::to_string(evolved.size()) +
+          " for " + std::to_string(ocean.cascades.size()));
   PointFields sum;
   for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
     const CascadeSpectra& c = ocean.cascades[i];

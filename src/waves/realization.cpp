@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/math.h"
 #include "waves/fft.h"
 #include "waves/random.h"
@@ -34,6 +35,9 @@ Complex initial_amplitude(const Spectrum& spectrum, std::uint64_t seed, const Pa
 
 PatternSpectrum pattern_grid(const Spectrum& spectrum, const Pattern& p) {
   const int n = p.resolution;
+  OCEANREF_EXPECTS(n >= 2 && (n & (n - 1)) == 0,
+                   "a pattern's N is a power of two >= 2, got " + std::to_string(n));
+  OCEANREF_EXPECTS(p.size > 0.0, "a pattern's size L is positive, got " + std::to_string(p.size));
   const double dk = wavenumber_spacing(p.size);
   PatternSpectrum s{p, std::vector<Complex>(grid_cells(n)), std::vector<double>(grid_cells(n)),
                     std::vector<double>(grid_cells(n))};
@@ -68,6 +72,8 @@ std::vector<Complex> spectrum_at_time(const PatternSpectrum& s, double time, int
 
 void evolve_spectrum(const PatternSpectrum& s, double time, int threads, std::vector<Complex>& h) {
   const int n = s.pattern.resolution;
+  OCEANREF_EXPECTS(s.h0.size() == grid_cells(n) && s.omega.size() == grid_cells(n),
+                   "h0 and omega hold N x N entries for N = " + std::to_string(n));
   h.resize(s.h0.size());
   parallel_for(n, threads, [&](int b) {
     const int bc = conjugate_array_index(b, n);

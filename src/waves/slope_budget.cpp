@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
 #include "waves/ocean.h"
@@ -13,6 +14,9 @@ WindSlopeVariance resolved_slope_variance(const PatternSpectrum& s, const std::v
                                           double wind_direction, Interpolation mode,
                                           SlopeReading reading) {
   const int n = s.pattern.resolution;
+  OCEANREF_EXPECTS(h.size() == grid_cells(n),
+                   "h(k, t) holds N x N entries for N = " + std::to_string(n) + ", got " +
+                       std::to_string(h.size()));
   const double spacing = s.pattern.size / n;  // Δ
   const double dk = wavenumber_spacing(s.pattern.size);
   // Per-axis factors of every wave index (the same along x and z), in physical units.

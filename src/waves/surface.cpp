@@ -1,5 +1,6 @@
 #include "waves/surface.h"
 
+#include "core/check.h"
 #include "waves/ocean.h"
 
 namespace oceanref {
@@ -30,6 +31,9 @@ CascadeSurface cascade_surface_from_grids(const CascadeFields& f, double x, doub
 PointFields combine_surface_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                const std::vector<EvolvedCascade>& evolved, double x, double z,
                                Interpolation mode) {
+  OCEANREF_EXPECTS(
+      (mode == Interpolation::direct ? evolved.size() : fields.size()) == ocean.cascades.size(),
+      "one field set (or evolved spectrum, for direct) per cascade");
   PointFields sum;
   for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
     const CascadeSpectra& c = ocean.cascades[i];
