@@ -14,10 +14,13 @@
 #include "cli/text.h"
 #include "conformance/provenance.h"
 #include "core/fp_environment.h"
+#include "io/output_file.h"
 
 int main(int argc, char** argv) {
   // Round to nearest with subnormals, whatever the process was started with (determinism contract).
   const oceanref::ReferenceFpEnvironment fp;
+  // An interrupted run leaves no temporary file; a file size limit is a write error.
+  oceanref::remove_output_temporaries_on_signals();
   CLI::App app{"oceanref: deterministic CPU reference renderer for spectral ocean surfaces",
                "oceanref"};
   app.set_version_flag("--version", oceanref::version_text());
