@@ -85,6 +85,9 @@ expect 2 '--fetch.*allow-extrapolation' spectrum --model jonswap --fetch 1e6 --o
 expect 0 '' spectrum --model jonswap --fetch 1e6 --allow-extrapolation --omega 1
 expect 2 '--depth.*\[0\.01, inf\]' spectrum --model tma --depth 0.001 --omega 1
 expect 2 '--model.*phillips, pierson-moskowitz' spectrum --model foo --omega 1
+# Beyond 1e6 rad/m the moments' integrands overflow (and no spectrum is defined there).
+expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 1e308
+expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 0.01
 expect 2 '--spreading.*donelan-banner' spectrum --model jonswap --spreading cos3 --omega 1
 expect 2 '--dispersion.*finite-depth' spectrum --model jonswap --dispersion shallow --omega 1
 expect 2 '--swell.*\[0, 1\]' spectrum --model jonswap --swell 2 --omega 1
@@ -158,6 +161,14 @@ expect 2 '--output: .*folder .*no/such/dir does not exist' fields "$tmp/scene.js
 [ -z "$(ls -A "$tmp/ro")" ] || fail "a failed EXR write left files behind"
 
 # --- sky and brdf --------------------------------------------------------------------------
+# A direction is its direction whatever its scale: components whose squares overflow (1e308) or
+# underflow (1e-300) give the same row as 1,1,0.
+"$bin" sky --sun-zenith-deg 30 --dir 1,1,0 >"$tmp/dir_unit"
+for d in 1e308,1e308,0 1e-300,1e-300,0; do
+  checks=$((checks + 1))
+  "$bin" sky --sun-zenith-deg 30 --dir "$d" >"$tmp/dir_scaled" 2>&1
+  cmp -s "$tmp/dir_unit" "$tmp/dir_scaled" || fail "sky --dir $d differs from --dir 1,1,0: $(cat "$tmp/dir_scaled")"
+done
 expect 0 '^x,y,z,Y,chroma_x,chroma_y,R,G,B$' sky --sun-zenith-deg 30 --dir '0,1,0;1,0.1,0;0,-1,0'
 [ "$(wc -l <"$tmp/out")" -eq 4 ] || fail "sky --dir did not print one row per direction"
 grep -q '^0,-1,0,[1-9]' "$tmp/out" || fail "sky below the horizon is not its (positive) horizon limit"

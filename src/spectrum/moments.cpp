@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/format.h"
 #include "core/math.h"
 
 namespace oceanref {
@@ -56,6 +57,10 @@ QuadratureResult zeroth_moment(const Spectrum& s, double k_max,
 
 SpectralMoments spectral_moments(const Spectrum& s, double k_max,
                                  const QuadratureTolerance& tolerance) {
+  if (!(k_max > 0.0 && k_max <= kMaxMomentWavenumber)) {
+    throw std::invalid_argument("spectral_moments: k_max must be in (0, 1e6] rad/m, got " +
+                                format_number(k_max));
+  }
   SpectralMoments m;
   const std::vector<double> b = wavenumber_breakpoints(s, k_max);
   const QuadratureResult m0 = zeroth_moment(s, k_max, tolerance);
