@@ -85,6 +85,9 @@ expect 2 '--fetch.*allow-extrapolation' spectrum --model jonswap --fetch 1e6 --o
 expect 0 '' spectrum --model jonswap --fetch 1e6 --allow-extrapolation --omega 1
 expect 2 '--depth.*\[0\.01, inf\]' spectrum --model tma --depth 0.001 --omega 1
 expect 2 '--model.*phillips, pierson-moskowitz' spectrum --model foo --omega 1
+# Beyond 1e6 rad/m the moments' integrands overflow (and no spectrum is defined there).
+expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 1e308
+expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 0.01
 expect 2 '--spreading.*donelan-banner' spectrum --model jonswap --spreading cos3 --omega 1
 expect 2 '--dispersion.*finite-depth' spectrum --model jonswap --dispersion shallow --omega 1
 expect 2 '--swell.*\[0, 1\]' spectrum --model jonswap --swell 2 --omega 1
@@ -147,15 +150,25 @@ expect 2 'cannot open' fields "$tmp/missing.json" --at 0,0
 expect 2 '--at.*x,z' fields "$tmp/scene.json" --at 1,2,3
 expect 2 'give -o OUT.exr or --at' fields "$tmp/scene.json"
 expect 2 '--threads' fields "$tmp/scene.json" --at 0,0 --threads -3
-# A failed write leaves neither the file nor a temporary next to it.
+# A failed write leaves neither the file nor a temporary next to it (a read-only folder stops
+# only non-root users; /proc stops root too).
 mkdir -p "$tmp/ro" && chmod a-w "$tmp/ro"
 if [ "$(id -u)" -ne 0 ]; then
-  expect 2 'cannot write' fields "$tmp/scene.json" -o "$tmp/ro/f.exr"
+  expect 2 'cannot create a temporary' fields "$tmp/scene.json" -o "$tmp/ro/f.exr"
 fi
-expect 2 'cannot write' fields "$tmp/scene.json" -o "$tmp/no/such/dir/f.exr"
+expect 2 'cannot create a temporary file in the folder /proc' fields "$tmp/scene.json" -o /proc/f.exr
+expect 2 '--output: .*folder .*no/such/dir does not exist' fields "$tmp/scene.json" -o "$tmp/no/such/dir/f.exr"
 [ -z "$(ls -A "$tmp/ro")" ] || fail "a failed EXR write left files behind"
 
 # --- sky and brdf --------------------------------------------------------------------------
+# A direction is its direction whatever its scale: components whose squares overflow (1e308) or
+# underflow (1e-300) give the same row as 1,1,0.
+"$bin" sky --sun-zenith-deg 30 --dir 1,1,0 >"$tmp/dir_unit"
+for d in 1e308,1e308,0 1e-300,1e-300,0; do
+  checks=$((checks + 1))
+  "$bin" sky --sun-zenith-deg 30 --dir "$d" >"$tmp/dir_scaled" 2>&1
+  cmp -s "$tmp/dir_unit" "$tmp/dir_scaled" || fail "sky --dir $d differs from --dir 1,1,0: $(cat "$tmp/dir_scaled")"
+done
 expect 0 '^x,y,z,Y,chroma_x,chroma_y,R,G,B$' sky --sun-zenith-deg 30 --dir '0,1,0;1,0.1,0;0,-1,0'
 [ "$(wc -l <"$tmp/out")" -eq 4 ] || fail "sky --dir did not print one row per direction"
 grep -q '^0,-1,0,[1-9]' "$tmp/out" || fail "sky below the horizon is not its (positive) horizon limit"
@@ -211,6 +224,45 @@ for t in 2 3 8; do
   checks=$((checks + 1))
   [ "$(cat "$tmp/hash$t")" = "$hash1" ] || fail "render pixel hash differs between 1 and $t threads"
 done
+# --- outputs never destroy data (io/output_file.h) ------------------------------------------
+# Refused before any work, exit 2, every file as it was: an output over the input, the same file
+# twice, a device, a directory, a dangling link.
+cp "$tmp/render.json" "$tmp/keep.json"
+expect 2 '--output: .*is the input' render "$tmp/keep.json" -o "$tmp/keep.json"
+ln -sf keep.json "$tmp/keep_link.json"
+expect 2 '--png: .*is the input' render "$tmp/keep.json" -o "$tmp/r_in.exr" --png "$tmp/keep_link.json"
+cmp -s "$tmp/render.json" "$tmp/keep.json" || fail "render -o SCENE changed the scene file"
+expect 2 '--png and --output name the same file' render "$tmp/render.json" -o "$tmp/same.exr" --png "$tmp/./same.exr"
+bin_path=$(realpath "$bin")
+(cd "$tmp" && "$bin_path" render render.json -o same.exr --png ./same.exr >/dev/null 2>&1)
+[ $? -eq 2 ] || fail "render -o same.exr --png ./same.exr was not refused"
+[ -e "$tmp/same.exr" ] && fail "render wrote an output after refusing -o and --png on one file"
+# (a FIFO of the test's own, not /dev/null: a binary with the bug would replace the device node
+# of the machine running the test; tests/test_output_file.cpp refuses /dev/null without writing)
+mkfifo "$tmp/fifo"
+expect 2 'fifo: is not a regular file' render "$tmp/render.json" -o "$tmp/fifo"
+[ -p "$tmp/fifo" ] || fail "render -o FIFO replaced the FIFO"
+expect 2 'is a directory' fields "$tmp/scene.json" -o "$tmp"
+ln -sf nowhere.exr "$tmp/dangling.exr"
+expect 2 'a symbolic link to nothing' fields "$tmp/scene.json" -o "$tmp/dangling.exr"
+expect 2 '--json: .*is the input' compare "$tmp/r1.exr" "$tmp/r2.exr" --json "$tmp/r2.exr"
+# A link to an existing output is followed: the file it names is replaced, the link kept.
+cp "$tmp/f1.exr" "$tmp/f_target.exr" && ln -sf f_target.exr "$tmp/f_link.exr"
+"$bin" fields "$tmp/scene.json" -o "$tmp/f_link.exr" --time 5 >/dev/null 2>&1 ||
+  fail "fields -o LINK failed"
+[ -L "$tmp/f_link.exr" ] && ! cmp -s "$tmp/f1.exr" "$tmp/f_target.exr" ||
+  fail "fields -o LINK did not replace the linked file and keep the link"
+# A write that fails (the file size limit, as on a full disk): nonzero exit, the old file intact,
+# no temporary left.
+cp "$tmp/r1.exr" "$tmp/limited.exr"
+(ulimit -f 1 && exec "$bin" render "$tmp/render.json" -o "$tmp/limited.exr" >/dev/null 2>"$tmp/err")
+rc=$?
+checks=$((checks + 1))
+[ "$rc" -ne 0 ] && grep -q 'limited.exr: cannot write: File too large' "$tmp/err" ||
+  fail "render over the file size limit: $(cat "$tmp/err")"
+cmp -s "$tmp/r1.exr" "$tmp/limited.exr" || fail "a failed render write changed the old file"
+ls -A "$tmp" | grep -q '^[.]oceanref-' && fail "a failed write left a temporary file"
+
 expect 0 '^sample,image_x,image_y,hit,depth' probe "$tmp/render.json" --pixel 20,20
 [ "$(wc -l <"$tmp/out")" -eq 7 ] || fail "probe did not print 4 samples and the pixel"
 expect 2 '--pixel.*inside the 40x24 image' probe "$tmp/render.json" --pixel 40,3

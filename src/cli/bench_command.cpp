@@ -13,6 +13,7 @@
 #include "conformance/lighting_map.h"
 #include "conformance/study.h"
 #include "io/exr.h"
+#include "io/output_file.h"
 #include "scene/scene.h"
 #include "waves/ocean.h"
 #include "waves/stages.h"
@@ -210,9 +211,10 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
     }
     if (lighting_map->parsed()) {
       const MapFlags& m = *map_options;
+      check_output_paths({{"--csv", m.csv}, {"--svg", m.svg}}, {});
       const LightingMap map = measure_lighting_map(lighting_map_sweep(m.quick), m.threads);
-      if (!m.csv.empty()) write_text_atomically(m.csv, lighting_map_csv(map));
-      if (!m.svg.empty()) write_text_atomically(m.svg, lighting_map_svg(map));
+      if (!m.csv.empty()) write_output_file(m.csv, lighting_map_csv(map));
+      if (!m.svg.empty()) write_output_file(m.svg, lighting_map_svg(map));
       out << lighting_map_markdown(map);
       return;
     }

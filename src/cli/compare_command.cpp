@@ -15,26 +15,11 @@
 #include "conformance/compare.h"
 #include "conformance/golden.h"
 #include "conformance/report.h"
+#include "io/output_file.h"
 
 namespace oceanref::cli {
 
 namespace {
-// Writes `text` to `path` atomically (temporary name, then rename).
-void write_text_file(const std::string& flag, const std::string& path, const std::string& text) {
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary = target.string() + ".tmp";
-  {
-    std::ofstream file(temporary);
-    file << text;
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw UsageError(flag, path + ": cannot write");
-    }
-  }
-  std::filesystem::rename(temporary, target);
-}
-
 std::vector<ExrPart> read_parts(const std::string& flag, const std::string& path) {
   try {
     return read_parts_for_compare(path);
@@ -160,6 +145,17 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
   cmd->add_option("-o,--output", f->output, "--suggest: write the profile JSON to FILE");
   cmd->add_option("--name", f->name, "--suggest: the profile's name");
   return [f, floor, min_ssim](std::ostream& out) {
+    // The report folder is created if missing; its index.html must not be an input either.
+    const std::filesystem::path report_page = std::filesystem::path(f->report) / "index.html";
+    std::vector<std::string> inputs = f->files;
+    for (const std::string* p : {&f->profile, &f->list}) {
+      if (!p->empty()) inputs.push_back(*p);
+    }
+    check_output_paths({{"--json", f->json},
+                        {"--output", f->output},
+                        {"--report", std::filesystem::is_directory(f->report) ? report_page.string()
+                                                                              : std::string()}},
+                       inputs);
     ChannelSelection selection;
     if (!f->channels.empty()) {
       try {
@@ -212,7 +208,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       if (f->output.empty()) {
         out << text;
       } else {
-        write_text_file("--output", f->output, text);
+        write_output_file(f->output, text);
         out << "wrote " << f->output << " (" << rules.size() << " channel rules from "
             << runs.size() << " runs)\n";
       }
@@ -243,7 +239,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       throw UsageError("compare", e.what());
     }
     const std::string json = comparison_json(c, f->files[1], f->files[0]);
-    if (!f->json.empty()) write_text_file("--json", f->json, json);
+    if (!f->json.empty()) write_output_file(f->json, json);
     out << (f->format == "json" ? json : comparison_text(c));
     if (!f->report.empty()) {
       write_report(f->report, f->files[1], f->files[0], golden, candidate, c);

@@ -9,6 +9,7 @@
 #include "cli/text.h"
 #include "conformance/fields_output.h"
 #include "io/exr.h"
+#include "io/output_file.h"
 #include "scene/scene.h"
 #include "waves/ocean.h"
 #include "waves/stages.h"
@@ -86,6 +87,7 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
     for (std::size_t i = 0; i < kStageNames.size(); ++i) {
       if (flags->stage == kStageNames[i]) stage = Stage(i);
     }
+    check_output_paths({{"--output", flags->output}}, {flags->scene});
     const int threads = resolve_threads(flags->threads);
     Scene scene = load_scene(flags->scene);
     if (!flags->time.empty()) {

@@ -1,5 +1,6 @@
 // oceanref: the command-line front end, a thin layer over the library.
-// Exit codes: 0 success, 1 failed check, 2 bad input (one line naming the flag and range).
+// Exit codes: 0 success, 1 failed check (and a non-finite result), 2 bad input (one line naming
+// the flag and range).
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <sstream>
@@ -14,10 +15,14 @@
 #include "cli/text.h"
 #include "conformance/provenance.h"
 #include "core/fp_environment.h"
+#include "io/output_file.h"
+#include "raster/renderer.h"
 
 int main(int argc, char** argv) {
   // Round to nearest with subnormals, whatever the process was started with (determinism contract).
   const oceanref::ReferenceFpEnvironment fp;
+  // An interrupted run leaves no temporary file; a file size limit is a write error.
+  oceanref::remove_output_temporaries_on_signals();
   CLI::App app{"oceanref: deterministic CPU reference renderer for spectral ocean surfaces",
                "oceanref"};
   app.set_version_flag("--version", oceanref::version_text());
@@ -67,6 +72,10 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("bench")) run_bench(out);
     std::cout << out.str() << std::flush;
     return std::cout ? 0 : 2;
+  } catch (const oceanref::NonFiniteOutputError& e) {
+    // A result that is not a number is a failed check, never a success (nothing was written).
+    std::cerr << "oceanref: non-finite output: " << e.what() << '\n';
+    return 1;
   } catch (const oceanref::cli::UsageError& e) {
     std::cerr << "oceanref: " << e.what() << '\n';
     return 2;

@@ -13,6 +13,7 @@
 #include "cli/text.h"
 #include "conformance/render_output.h"
 #include "io/exr.h"
+#include "io/output_file.h"
 #include "scene/scene.h"
 
 namespace oceanref::cli {
@@ -65,6 +66,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       "the lighting per channel; for shading.accuracy fast, |fast - reference| + the reference's "
       "estimate, which costs a reference render)");
   return [f](std::ostream& out) {
+    check_output_paths({{"--output", f->output}, {"--png", f->png}}, {f->scene});
     RenderOutputOptions options;
     options.threads = resolve_threads(f->threads);
     const Scene scene = load_scene(f->scene);

@@ -9,6 +9,7 @@
 #include "cli/text.h"
 #include "core/math.h"
 #include "io/exr.h"
+#include "io/output_file.h"
 #include "sky/preetham.h"
 
 namespace oceanref::cli {
@@ -122,6 +123,7 @@ std::function<void(std::ostream&)> add_sky_command(CLI::App& app) {
   sun->excludes(irradiance)->excludes(size);
   irradiance->excludes(size);
   return [flags](std::ostream& out) {
+    check_output_paths({{"--output", flags->output}}, {});
     const double zenith = parse_number("--sun-zenith-deg", flags->zenith);
     if (zenith < 0.0 || zenith > 180.0) {
       throw UsageError("--sun-zenith-deg", "must be in [0, 180], got " + flags->zenith);

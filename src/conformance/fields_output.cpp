@@ -1,5 +1,7 @@
 #include "conformance/fields_output.h"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 #include <string_view>
@@ -8,6 +10,7 @@
 #include "conformance/provenance.h"
 #include "core/format.h"
 #include "io/sha256.h"
+#include "raster/renderer.h"
 #include "waves/direct_sum.h"
 #include "waves/ocean.h"
 
@@ -72,6 +75,15 @@ std::string field_unit(const std::string& field) {
 void add_channel(ExrImage& image, std::map<std::string, std::vector<double>>& exact,
                  const std::string& name, const std::string& unit,
                  const std::vector<double>& values) {
+  // A non-finite value (or one beyond float's range) is never written: the first one, by pixel.
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(static_cast<float>(values[i]))) {
+      const std::size_t w = static_cast<std::size_t>(std::max(image.width, 1));
+      throw NonFiniteOutputError(name + " at pixel (" + std::to_string(i % w) + ", " +
+                                 std::to_string(i / w) + ") is " + format_number(values[i]) +
+                                 (std::isfinite(values[i]) ? " (beyond float32's range)" : ""));
+    }
+  }
   image.channels.push_back({name, 1, to_float(values)});
   image.attributes["oceanref.units." + name] = unit;
   exact[name] = values;

@@ -11,6 +11,7 @@
 #include "conformance/fields_output.h"
 #include "conformance/render_output.h"
 #include "io/exr.h"
+#include "io/output_file.h"
 #include "io/sha256.h"
 #include "scene/scene.h"
 
@@ -92,17 +93,7 @@ GoldenReport run(const std::filesystem::path& root, const GoldenOptions& options
     report.scenes.push_back(std::move(result));
   }
   if (update) {
-    const std::filesystem::path temporary = manifest_path.string() + ".tmp";
-    {
-      std::ofstream file(temporary);
-      file << manifest.dump(2) << '\n';
-      if (!file) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw std::runtime_error(manifest_path.string() + ": cannot write");
-      }
-    }
-    std::filesystem::rename(temporary, manifest_path);
+    write_output_file(manifest_path.string(), manifest.dump(2) + '\n');
   }
   return report;
 }

@@ -5,8 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <numbers>
 #include <optional>
@@ -402,22 +400,6 @@ const Row& find_row(const Map& map, Integral integral, bool fast, double setting
 
 // ---- Output ---------------------------------------------------------------------------------
 
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary = target.string() + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    file << text;
-    file.close();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error(path + ": cannot write");
-    }
-  }
-  std::filesystem::rename(temporary, target);
-}
-
 std::string csv_text(const Map& map) {
   std::ostringstream s;
   s << "integral,mode,setting,cases,median_relative_error,p95_relative_error,max_relative_error,"
@@ -710,10 +692,6 @@ std::string lighting_map_markdown(const LightingMap& map) {
   std::ostringstream out;
   print_markdown(out, map);
   return out.str();
-}
-
-void write_text_atomically(const std::string& path, const std::string& text) {
-  write_atomically(path, text);
 }
 
 LightingPixelErrors lighting_pixel_errors(const ExrImage& fast, const ExrImage& ref) {

@@ -69,8 +69,6 @@ LightingMap measure_lighting_map(const LightingSweepSpec& spec, int threads);
 std::string lighting_map_csv(const LightingMap& map);
 std::string lighting_map_svg(const LightingMap& map);
 std::string lighting_map_markdown(const LightingMap& map);
-// Writes `text` to `path` under a temporary name, then renames it.
-void write_text_atomically(const std::string& path, const std::string& text);
 
 // The per-pixel error of a fast render (written with --aov) against a reference render of the
 // same scene over sea pixels (coverage > 0 in the fast render): |fast − reference|/|reference|,

@@ -1,16 +1,15 @@
 #include "conformance/report.h"
 
-#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/math.h"
+#include "io/output_file.h"
 #include "io/png.h"
 #include "shading/tone_mapping.h"
 
@@ -258,21 +257,6 @@ std::string histogram_html(const ErrorHistogram& hist) {
   if (hist.nonfinite > 0) row("non-finite", hist.nonfinite);
   h << "</table>";
   return h.str();
-}
-
-void write_atomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path temporary =
-      path.parent_path() / ("." + path.filename().string() + ".tmp" + std::to_string(getpid()));
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    file << text;
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error(path.string() + ": cannot write");
-    }
-  }
-  std::filesystem::rename(temporary, path);
 }
 
 const char* kStyle =
@@ -565,7 +549,7 @@ void write_report(const std::string& directory, const std::string& golden_name,
     write_exr((dir / name).string(), diff);
   }
   html << "<script>" << kScript << "</script>\n</body></html>\n";
-  write_atomically(dir / "index.html", html.str());
+  write_output_file((dir / "index.html").string(), html.str());
 }
 
 }  // namespace oceanref

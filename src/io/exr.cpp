@@ -1,5 +1,7 @@
 #include "io/exr.h"
 
+#include "io/output_file.h"
+
 #include <ImfChannelList.h>
 #include <ImfChromaticities.h>
 #include <ImfFrameBuffer.h>
@@ -15,8 +17,8 @@
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <ImfTiledInputPart.h>
-#include <unistd.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <set>
@@ -95,18 +97,37 @@ Imf::FrameBuffer output_frame(const ExrImage& image) {
   return frame;
 }
 
-// Runs `write` on a temporary name in the target's folder, then renames it over the target;
-// on failure the temporary file is removed and the error names the target.
-void write_atomically(const std::string& path, const std::function<void(const char*)>& write) {
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary =
-      target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
+// Where OpenEXR writes: an OutputFile (io/output_file.h), so every write is checked and the
+// file appears only when complete.
+class CheckedStream : public Imf::OStream {
+ public:
+  explicit CheckedStream(OutputFile& file) : Imf::OStream(file.path().c_str()), file_(file) {}
+  void write(const char bytes[], int count) override {
+    file_.write(bytes, static_cast<std::size_t>(count));
+  }
+  std::uint64_t tellp() override { return file_.position(); }
+  void seekp(std::uint64_t offset) override { file_.seek(offset); }
+
+ private:
+  OutputFile& file_;
+};
+
+// Runs `write` on a stream into a new OutputFile for `path` and commits it; the error names
+// the file. `write` must have destroyed its OpenEXR writer (which finishes the file) on return.
+void write_through_stream(const std::string& path,
+                          const std::function<void(Imf::OStream&)>& write) {
   try {
-    write(temporary.c_str());
-    std::filesystem::rename(temporary, target);
+    OutputFile file(path);
+    {
+      CheckedStream stream(file);
+      write(stream);
+    }
+    file.commit();
+  } catch (const OutputPathError&) {
+    throw;
+  } catch (const OutputWriteError&) {
+    throw;
   } catch (const std::exception& e) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
     throw std::runtime_error(path + ": cannot write the EXR file: " + e.what());
   }
 }
@@ -222,8 +243,8 @@ void write_exr(const std::string& path, const ExrImage& image) {
   check_size(image, path);
   const Imf::Header header = make_header(image);
   const Imf::FrameBuffer frame = output_frame(image);
-  write_atomically(path, [&](const char* temporary) {
-    Imf::OutputFile file(temporary, header);
+  write_through_stream(path, [&](Imf::OStream& stream) {
+    Imf::OutputFile file(stream, header);
     file.setFrameBuffer(frame);
     file.writePixels(image.height);
   });
@@ -264,8 +285,8 @@ void write_exr_parts(const std::string& path, const std::vector<ExrPart>& parts)
   Imath::Box2i display;
   for (const Imf::Header& h : headers) display.extendBy(h.dataWindow());
   for (Imf::Header& h : headers) h.displayWindow() = display;
-  write_atomically(path, [&](const char* temporary) {
-    Imf::MultiPartOutputFile file(temporary, headers.data(), static_cast<int>(headers.size()));
+  write_through_stream(path, [&](Imf::OStream& stream) {
+    Imf::MultiPartOutputFile file(stream, headers.data(), static_cast<int>(headers.size()));
     for (std::size_t i = 0; i < parts.size(); ++i) {
       Imf::OutputPart part(file, static_cast<int>(i));
       part.setFrameBuffer(output_frame(parts[i].image));

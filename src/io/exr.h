@@ -1,5 +1,5 @@
-// OpenEXR output of named float channels, written atomically: to a temporary name in the same
-// folder, then renamed, so a failed or interrupted run never leaves a partial file.
+// OpenEXR output of named float channels, written whole or not at all through an OutputFile
+// (io/output_file.h): a failed or interrupted run never leaves a partial file.
 // Single-part files (write_exr/read_exr) and multi-part files (write_exr_parts/read_exr_parts).
 #pragma once
 

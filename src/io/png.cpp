@@ -1,11 +1,11 @@
 #include "io/png.h"
 
-#include <unistd.h>
 #include <zlib.h>
 
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
+#include <string_view>
+
+#include "io/output_file.h"
 
 namespace oceanref {
 
@@ -59,24 +59,7 @@ std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<st
 void write_png(const std::string& path, int width, int height,
                const std::vector<std::uint8_t>& rgb) {
   const std::vector<std::uint8_t> out = encode_png(width, height, rgb);
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary =
-      target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    file.write(reinterpret_cast<const char*>(out.data()), static_cast<std::streamsize>(out.size()));
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw std::runtime_error(path + ": cannot write the PNG file");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, target, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw std::runtime_error(path + ": cannot write the PNG file");
-  }
+  write_output_file(path, std::string_view(reinterpret_cast<const char*>(out.data()), out.size()));
 }
 
 }  // namespace oceanref

@@ -5,8 +5,11 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include "core/check.h"
+#include "core/format.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
 #include "spectrum/moments.h"
@@ -257,6 +260,7 @@ RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
   lap(&RenderTimes::shading);
   image.unconverged_samples = unconverged;
   image.integrand_evaluations = evaluations;
+  require_finite(image);
   return image;
 }
 
@@ -276,6 +280,49 @@ SurfaceMesh surface_mesh(const RenderJob& job) {
   const FrameFields fields = frame_fields(job);
   Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
   return {std::move(g.grid), std::move(g.world), std::move(g.triangles)};
+}
+
+void require_finite(const RenderedImage& image) {
+  const auto text = [](double v) { return format_number(v); };
+  const auto terms = [&](std::size_t p) {
+    std::string s;
+    for (const auto& [name, buffer] :
+         {std::pair{"sun", &image.sun}, std::pair{"sky", &image.sky}, std::pair{"sea", &image.sea},
+          std::pair{"foam", &image.foam}}) {
+      if (p < buffer->size()) {
+        s += std::string(s.empty() ? "" : ", ") + name + " = (" + text((*buffer)[p][0]) + ", " +
+             text((*buffer)[p][1]) + ", " + text((*buffer)[p][2]) + ")";
+      }
+    }
+    return s;
+  };
+  const auto fail = [&](std::size_t p, const std::string& buffer, const std::string& channel,
+                        double value) {
+    const std::size_t w = static_cast<std::size_t>(std::max(image.width, 1));
+    throw NonFiniteOutputError("pixel (" + std::to_string(p % w) + ", " + std::to_string(p / w) +
+                               "): " + buffer + channel + " is " + text(value) + " (coverage " +
+                               (p < image.coverage.size() ? text(image.coverage[p]) : "?") +
+                               "; terms: " + terms(p) + ")");
+  };
+  const std::size_t pixels = image.radiance.size();
+  for (std::size_t p = 0; p < pixels; ++p) {
+    // The terms first: a non-finite radiance names the term it came from.
+    for (const auto& [name, buffer] :
+         {std::pair{"sun", &image.sun}, std::pair{"sky", &image.sky}, std::pair{"sea", &image.sea},
+          std::pair{"foam", &image.foam}, std::pair{"radiance", &image.radiance},
+          std::pair{"lighting_error", &image.lighting_error}, std::pair{"normal", &image.normal},
+          std::pair{"x0", &image.x0}}) {
+      if (p >= buffer->size()) continue;
+      for (std::size_t c = 0; c < 3; ++c) {
+        if (!std::isfinite((*buffer)[p][c]))
+          fail(p, name, std::string(".") + "RGB"[c], (*buffer)[p][c]);
+      }
+    }
+    for (const auto& [name, buffer] :
+         {std::pair{"depth", &image.depth}, std::pair{"coverage", &image.coverage}}) {
+      if (p < buffer->size() && !std::isfinite((*buffer)[p])) fail(p, name, "", (*buffer)[p]);
+    }
+  }
 }
 
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,

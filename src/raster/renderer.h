@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <vector>
 
 #include "raster/camera.h"
@@ -73,6 +74,19 @@ struct RenderTimes {
   double shading = 0.0;  // per-sample shading and the resolve
 };
 
+// A non-finite value in an output: never written, never a success (the program exits 1).
+class NonFiniteOutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws NonFiniteOutputError when any buffer of `image` holds a non-finite value: the first
+// such pixel in row-major order, with the buffer (the term: radiance, sun, sky, sea, foam,
+// lighting_error, depth, normal, x0, coverage), the channel and the terms of that pixel.
+void require_finite(const RenderedImage& image);
+
+// Renders the job; the image is checked with require_finite (a non-finite pixel is an error,
+// whatever its cause).
 RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
                      RenderTimes* times = nullptr);
 

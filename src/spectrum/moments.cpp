@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/check.h"
+#include "core/format.h"
 #include "core/math.h"
 
 namespace oceanref {
@@ -57,6 +58,10 @@ QuadratureResult zeroth_moment(const Spectrum& s, double k_max,
 
 SpectralMoments spectral_moments(const Spectrum& s, double k_max,
                                  const QuadratureTolerance& tolerance) {
+  if (!(k_max > 0.0 && k_max <= kMaxMomentWavenumber)) {
+    throw std::invalid_argument("spectral_moments: k_max must be in (0, 1e6] rad/m, got " +
+                                format_number(k_max));
+  }
   SpectralMoments m;
   const std::vector<double> b = wavenumber_breakpoints(s, k_max);
   const QuadratureResult m0 = zeroth_moment(s, k_max, tolerance);
