@@ -175,9 +175,10 @@ void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::str
 void write_moments(std::ostream& out, const Spectrum& s, const std::string& k_max_text) {
   const double k_max =
       k_max_text.empty() ? kDefaultMaxWavenumber : parse_number("--k-max", k_max_text, true);
-  if (!(k_max > s.peak_wavenumber) || k_max > kMaxMomentWavenumber) {
-    throw UsageError("--k-max", "must be in (k_p, 1e6] rad/m with the peak wavenumber k_p = " +
-                                    format_number(s.peak_wavenumber) + " rad/m, got " + k_max_text);
+  if (!(k_max > s.peak_wavenumber) || (k_max > kMaxMomentWavenumber && k_max != HUGE_VAL)) {
+    throw UsageError("--k-max",
+                     "must be in (k_p, 1e6] rad/m or inf, with the peak wavenumber k_p = " +
+                         format_number(s.peak_wavenumber) + " rad/m, got " + k_max_text);
   }
   SpectralMoments m;
   try {

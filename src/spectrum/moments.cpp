@@ -58,8 +58,8 @@ QuadratureResult zeroth_moment(const Spectrum& s, double k_max,
 
 SpectralMoments spectral_moments(const Spectrum& s, double k_max,
                                  const QuadratureTolerance& tolerance) {
-  if (!(k_max > 0.0 && k_max <= kMaxMomentWavenumber)) {
-    throw std::invalid_argument("spectral_moments: k_max must be in (0, 1e6] rad/m, got " +
+  if (!(k_max > 0.0 && (k_max <= kMaxMomentWavenumber || k_max == HUGE_VAL))) {
+    throw std::invalid_argument("spectral_moments: k_max must be in (0, 1e6] rad/m or inf, got " +
                                 format_number(k_max));
   }
   SpectralMoments m;

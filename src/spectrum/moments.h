@@ -10,8 +10,9 @@ namespace oceanref {
 
 // λ_min = 1.73 cm floor for spectra without capillary physics (Gamper §4.4): k = 2π/λ_min.
 inline constexpr double kDefaultMaxWavenumber = 2.0 * 3.141592653589793 / 0.0173;
-// The largest k_max spectral_moments accepts [rad/m] (a wavelength of 6.3 µm, far beyond every
-// model's capillary range; beyond ~1e150 the integrands' powers of k overflow).
+// The largest finite k_max spectral_moments accepts [rad/m] (a wavelength of 6.3 µm, far beyond
+// every model's capillary range; beyond ~1e150 the integrands' powers of k overflowed and the
+// result fell back silently); k_max = inf is accepted too (integrated on a mapped interval).
 inline constexpr double kMaxMomentWavenumber = 1e6;
 
 struct SpectralMoments {
