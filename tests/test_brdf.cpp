@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/quadrature.h"
 #include "shading/ocean_lighting.h"
 #include "shading/tone_mapping.h"
-#include "spectrum/quadrature.h"
 
 using namespace oceanref;
 

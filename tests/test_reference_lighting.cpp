@@ -12,18 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "core/quadrature.h"
+#include "core/vec3.h"
 #include "shading/ocean_lighting.h"
 #include "shading/reference_lighting.h"
-#include "spectrum/quadrature.h"
 
 using namespace oceanref;
 
 namespace {
 constexpr double kPi = std::numbers::pi;
 
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 Vec3 in_frame(const SurfaceFrame& f, double x, double n, double y) {
   Vec3 v{};
   for (std::size_t k = 0; k < 3; ++k)

@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/math.h"
+#include "core/quadrature.h"
 #include "raster/renderer.h"
 #include "scene/scene.h"
-#include "spectrum/quadrature.h"
 #include "waves/slope_budget.h"
 
 using namespace oceanref;

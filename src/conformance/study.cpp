@@ -15,6 +15,7 @@
 #include "conformance/float32_backend.h"
 #include "core/format.h"
 #include "core/math.h"
+#include "core/parallel.h"
 #include "shading/ocean_lighting.h"
 #include "waves/direct_sum.h"
 

@@ -8,6 +8,7 @@
 
 #include "core/fp_environment.h"
 #include "core/math.h"
+#include "core/parallel.h"
 #include "spectrum/moments.h"
 #include "waves/fft.h"
 

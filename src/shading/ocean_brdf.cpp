@@ -5,36 +5,22 @@
 #include <numbers>
 
 #include "core/math.h"
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
+#include "core/vec3.h"
 
 namespace oceanref {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
 const double kSqrtPi = std::sqrt(kPi);
-
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 normalized(const Vec3& v) {
-  const double l = std::sqrt(dot(v, v));
-  return {v[0] / l, v[1] / l, v[2] / l};
-}
-Vec3 combine(double a, const Vec3& u, double b, const Vec3& v, double c, const Vec3& w) {
-  return {a * u[0] + b * v[0] + c * w[0], a * u[1] + b * v[1] + c * w[1],
-          a * u[2] + b * v[2] + c * w[2]};
-}
 }  // namespace
 
 SurfaceFrame wind_frame(const Vec3& normal, double wind_angle) {
-  const Vec3 n = normalized(normal);
+  const Vec3 n = normalize(normal);
   const Vec3 wind{math::cos(wind_angle), 0.0, math::sin(wind_angle)};
   Vec3 tx = combine(1.0, wind, -dot(wind, n), n, 0.0, n);
   if (dot(tx, tx) < 1e-20) tx = combine(1.0, Vec3{0.0, 0.0, 1.0}, -n[2], n, 0.0, n);
-  tx = normalized(tx);
+  tx = normalize(tx);
   return {n, tx, cross(n, tx)};
 }
 
@@ -120,7 +106,7 @@ BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const ViewTerms& v, co
   const double zl = dot(light, f.normal);
   const double zv = v.cos_theta;
   if (!(zl > 0.0) || !(zv > 0.0)) return t;
-  const Vec3 h = normalized(combine(1.0, light, 1.0, view, 0.0, view));
+  const Vec3 h = normalize(combine(1.0, light, 1.0, view, 0.0, view));
   const double zh = dot(h, f.normal);
   t.zeta_x = dot(h, f.tangent_x) / zh;
   t.zeta_y = dot(h, f.tangent_y) / zh;
@@ -149,8 +135,8 @@ double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const Sur
 }
 
 std::array<Vec3, 2> sun_disk_axes(const Vec3& sun) {
-  const Vec3 u = normalized(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
-                                                    : cross(sun, Vec3{1.0, 0.0, 0.0}));
+  const Vec3 u = normalize(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
+                                                   : cross(sun, Vec3{1.0, 0.0, 0.0}));
   return {u, cross(sun, u)};
 }
 

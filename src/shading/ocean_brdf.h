@@ -13,8 +13,8 @@
 #include <array>
 #include <vector>
 
-#include "sky/color.h"
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
+#include "core/vec3.h"
 
 namespace oceanref {
 

@@ -4,15 +4,10 @@
 #include <numbers>
 
 #include "core/math.h"
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
+#include "core/vec3.h"
 
 namespace oceanref {
-
-namespace {
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-}  // namespace
 
 Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, const Sky& sky,
                    int order, const BrdfOptions& options) {

@@ -9,19 +9,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/adaptive_cubature.h"
 #include "core/math.h"
+#include "core/vec3.h"
 #include "shading/ocean_lighting.h"
-#include "spectrum/adaptive_cubature.h"
 
 namespace oceanref {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kT = kSlopeTruncation;
-
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // [lo, hi] split at the Gaussian's scale (t = −2, 0, 2: pieces on which e^{−t²} is smooth
 // enough for one Kronrod rule) and at the given points, ascending.

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/errors.h"
 #include "spectrum/dispersion.h"
 #include "spectrum/wavenumber_spectra.h"
 
@@ -30,18 +31,6 @@ enum class SpreadingModel {
 };
 enum class PiersonMoskowitzWind { u10, u19_5 };           // which wind the speed means
 enum class DepthAttenuation { exact, thompson_vincent };  // TMA Φ: eq. 1.9 or eq. 1.10
-
-// A setting out of its valid range. `key` names the setting (snake_case, as in scene files);
-// the message states the accepted range and the value given.
-class SettingError : public std::invalid_argument {
- public:
-  SettingError(std::string key, const std::string& message)
-      : std::invalid_argument(message), key_(std::move(key)) {}
-  const std::string& key() const { return key_; }
-
- private:
-  std::string key_;
-};
 
 // What a user chooses. Unset optionals take the model's own value.
 struct SpectrumSettings {

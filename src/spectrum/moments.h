@@ -3,8 +3,8 @@
 //   mss_x = ∬ k_x² Θ dk, mss_z = ∬ k_z² Θ dk, mss = mss_x + mss_z = ∫ k² Ψ dk  (eq. A.1–A.2).
 #pragma once
 
+#include "core/quadrature.h"
 #include "spectrum/model.h"
-#include "spectrum/quadrature.h"
 
 namespace oceanref {
 

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "core/math.h"
+#include "core/parallel.h"
 #include "waves/fft.h"
 
 namespace oceanref {

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/parallel.h"
 #include "waves/fft.h"
 
 namespace oceanref {

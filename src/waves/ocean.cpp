@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "core/fp_environment.h"
+#include "core/parallel.h"
 #include "waves/direct_sum.h"
 #include "waves/fft.h"
 #include "waves/mastin.h"
