@@ -570,8 +570,8 @@ void print_markdown(std::ostream& out, const Map& map) {
   out << "} × σ² (upwind/crosswind) ∈ {";
   for (std::size_t i = 0; i < spec.roughness.size(); ++i) {
     const SlopeVariance& s = spec.roughness[i];
-    out << (i ? ", " : "") << short_number(s.x, 2);
-    if (s.y != s.x) out << '/' << short_number(s.y, 2);
+    out << (i ? ", " : "") << short_number(s.upwind, 2);
+    if (s.crosswind != s.upwind) out << '/' << short_number(s.crosswind, 2);
   }
   out << "} × normal ∈ {flat" << (spec.tilted.size() > 1 ? ", tilted 30°" : "")
       << "} × sun zenith ∈ {";

@@ -52,7 +52,7 @@ struct RenderedImage {
   std::vector<Vec3> lighting_error;
   long unconverged_samples = 0;  // samples whose reference integrals missed the tolerance
   long integrand_evaluations = 0;
-  WindSlopeVariance unresolved;  // the BRDF roughness used
+  SlopeVariance unresolved;  // the BRDF roughness used
   double displacement_bound = 0.0;
 };
 
@@ -63,7 +63,7 @@ SlopeVarianceBudget slope_budget(const RenderJob& job, const WaveSettings& waves
 // The unresolved slope variance, the BRDF's σ²: every slope variance the shaded fields do not
 // carry — the spectrum beyond their bands, what interpolation removes, and the realization's
 // deficit — so that resolved + σ² equals the spectrum's moment per axis.
-WindSlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves);
+SlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves);
 
 // Wall-clock seconds per stage (benchmarks).
 struct RenderTimes {
@@ -73,7 +73,7 @@ struct RenderTimes {
   double shading = 0.0;  // per-sample shading and the resolve
 };
 
-RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
+RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved,
                      RenderTimes* times = nullptr);
 
 // Everything behind one sample, for `oceanref probe`.
@@ -93,7 +93,7 @@ struct SampleProbe {
   Vec3 lighting_error{};  // of `radiance` (see RenderedImage::lighting_error)
 };
 // The shading of one sample of the image (its fragment from a full raster pass).
-std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
+std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& unresolved,
                                      int pixel_x, int pixel_y);
 
 }  // namespace oceanref

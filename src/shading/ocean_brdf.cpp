@@ -25,16 +25,17 @@ SurfaceFrame wind_frame(const Vec3& normal, double wind_angle) {
 }
 
 double slope_density(double zeta_x, double zeta_y, SlopeVariance s) {
-  return math::exp(-0.5 * (zeta_x * zeta_x / s.x + zeta_y * zeta_y / s.y)) /
-         (2.0 * kPi * std::sqrt(s.x * s.y));
+  return math::exp(-0.5 * (zeta_x * zeta_x / s.upwind + zeta_y * zeta_y / s.crosswind)) /
+         (2.0 * kPi * std::sqrt(s.upwind * s.crosswind));
 }
 
 double directional_slope_variance(const Vec3& d, const SurfaceFrame& f, SlopeVariance s) {
   const double a = dot(d, f.tangent_x);
   const double b = dot(d, f.tangent_y);
   const double horizontal = a * a + b * b;
-  if (!(horizontal > 0.0)) return 0.5 * (s.x + s.y);  // along N: any azimuth; Λ = 0 there
-  return (s.x * a * a + s.y * b * b) / horizontal;
+  if (!(horizontal > 0.0))
+    return 0.5 * (s.upwind + s.crosswind);  // along N: any azimuth; Λ = 0 there
+  return (s.upwind * a * a + s.crosswind * b * b) / horizontal;
 }
 
 double rational_erfc(double x) {
@@ -180,19 +181,15 @@ double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
   const double vn = dot(view, f.normal);
   double numerator = 0.0;
   double visible = 0.0;
-  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
-    const double zx = std::sqrt(2.0 * s.x) * g.nodes[i];
-    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
-      const double zy = std::sqrt(2.0 * s.y) * g.nodes[j];
-      // Facet normal m ∝ ñ = N − ζ_x T_x − ζ_y T_y; V·ñ its projected area towards V.
-      const double projected = vn - zx * vx - zy * vy;
-      if (!(projected > 0.0)) continue;
-      const double weight = g.weights[i] * g.weights[j] * projected;
-      const double cos_vm = projected / std::sqrt(1.0 + zx * zx + zy * zy);
-      numerator += weight * fresnel_reflectance(cos_vm, options.fresnel);
-      visible += weight;
-    }
-  }
+  for_each_hermite_slope(g, s, [&](double zx, double zy, double w) {
+    // Facet normal m ∝ ñ = N − ζ_x T_x − ζ_y T_y; V·ñ its projected area towards V.
+    const double projected = vn - zx * vx - zy * vy;
+    if (!(projected > 0.0)) return;
+    const double weight = w * projected;
+    const double cos_vm = projected / std::sqrt(1.0 + zx * zx + zy * zy);
+    numerator += weight * fresnel_reflectance(cos_vm, options.fresnel);
+    visible += weight;
+  });
   return visible > 0.0 ? numerator / visible : fresnel_reflectance(0.0, options.fresnel);
 }
 

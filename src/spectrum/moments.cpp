@@ -93,9 +93,9 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
   return m;
 }
 
-WindSlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
-                                      const QuadratureTolerance& tolerance) {
-  WindSlopeVariance out;
+SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
+                                  const QuadratureTolerance& tolerance) {
+  SlopeVariance out;
   if (!(k_hi > k_lo)) return out;
   std::vector<double> b{k_lo};
   for (const double k : wavenumber_breakpoints(s, k_hi)) {
