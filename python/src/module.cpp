@@ -8,6 +8,7 @@
 #include "build_info.h"
 #include "common.h"
 #include "conformance/provenance.h"
+#include "core/direction.h"
 #include "scene/scene.h"
 #include "spectrum/model.h"
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/text.h"
+#include "core/choice.h"
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
 
@@ -55,14 +56,7 @@ std::optional<double> optional_number(const std::string& flag, const std::string
 
 SpectrumSettings settings_from(const SpectrumFlags& f) {
   SpectrumSettings s;
-  const auto model = parse_spectrum_model(f.model);
-  if (!model) {
-    throw UsageError("--model",
-                     "expected one of phillips, pierson-moskowitz, jonswap, tma, "
-                     "donelan, unified; got '" +
-                         f.model + "'");
-  }
-  s.model = *model;
+  s.model = parse_choice<UsageError>(kSpectrumModels, "--model", f.model);
   s.wind_speed = parse_number("--wind-speed", f.wind_speed);
   s.fetch = parse_number("--fetch", f.fetch);
   s.depth = parse_number("--depth", f.depth, true);
@@ -74,20 +68,10 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
   }
   s.wind_direction = direction_deg * kDegree;
   if (!f.spreading.empty()) {
-    s.spreading = parse_spreading_model(f.spreading);
-    if (!s.spreading) {
-      throw UsageError("--spreading",
-                       "expected one of cos2, cos4, mitsuyasu, hasselmann, "
-                       "mastin, gamper, donelan, donelan-banner, unified; got '" +
-                           f.spreading + "'");
-    }
+    s.spreading = parse_choice<UsageError>(kSpreadingModels, "--spreading", f.spreading);
   }
   if (!f.dispersion.empty()) {
-    s.dispersion = parse_dispersion(f.dispersion);
-    if (!s.dispersion) {
-      throw UsageError("--dispersion",
-                       "expected one of deep, finite-depth, capillary; got '" + f.dispersion + "'");
-    }
+    s.dispersion = parse_choice<UsageError>(kDispersionKinds, "--dispersion", f.dispersion);
   }
   s.swell = parse_number("--swell", f.swell);
   s.spread_blend = parse_number("--spread-blend", f.spread_blend);
@@ -96,21 +80,9 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
   s.peak_frequency = optional_number("--peak-omega", f.peak_omega);
   s.sigma_low = optional_number("--sigma-low", f.sigma_low);
   s.sigma_high = optional_number("--sigma-high", f.sigma_high);
-  if (f.pm_wind == "u10") {
-    s.pm_wind = PiersonMoskowitzWind::u10;
-  } else if (f.pm_wind == "u19.5") {
-    s.pm_wind = PiersonMoskowitzWind::u19_5;
-  } else {
-    throw UsageError("--pm-wind", "expected u10 or u19.5, got '" + f.pm_wind + "'");
-  }
-  if (f.tma_attenuation == "exact") {
-    s.depth_attenuation = DepthAttenuation::exact;
-  } else if (f.tma_attenuation == "thompson-vincent") {
-    s.depth_attenuation = DepthAttenuation::thompson_vincent;
-  } else {
-    throw UsageError("--tma-attenuation",
-                     "expected exact or thompson-vincent, got '" + f.tma_attenuation + "'");
-  }
+  s.pm_wind = parse_choice<UsageError>(kPiersonMoskowitzWinds, "--pm-wind", f.pm_wind);
+  s.depth_attenuation =
+      parse_choice<UsageError>(kDepthAttenuations, "--tma-attenuation", f.tma_attenuation);
   s.phillips_suppression = parse_number("--phillips-suppression", f.suppression);
   s.printed_spreading = f.printed;
   s.allow_extrapolation = f.allow_extrapolation;

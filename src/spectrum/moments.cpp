@@ -99,10 +99,10 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
   return m;
 }
 
-WindSlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
+SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
                                       const QuadratureTolerance& tolerance) {
   OCEANREF_EXPECTS(k_lo >= 0.0, "a band starts at a wavenumber >= 0, got " + std::to_string(k_lo));
-  WindSlopeVariance out;
+  SlopeVariance out;
   if (!(k_hi > k_lo)) return out;
   std::vector<double> b{k_lo};
   for (const double k : wavenumber_breakpoints(s, k_hi)) {

@@ -3,8 +3,9 @@
 //   mss_x = ∬ k_x² Θ dk, mss_z = ∬ k_z² Θ dk, mss = mss_x + mss_z = ∫ k² Ψ dk  (eq. A.1–A.2).
 #pragma once
 
+#include "core/quadrature.h"
 #include "spectrum/model.h"
-#include "spectrum/quadrature.h"
+#include "spectrum/slope_variance.h"
 
 namespace oceanref {
 
@@ -42,12 +43,8 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
 // The slope variances of the waves with k_lo ≤ |k| ≤ k_hi along and across the wind:
 // ∫ k² Ψ(k) ∫ cos²(θ − φ) D dθ dk and the same with sin² (Gamper A.1 in the wind frame) — the
 // roughness a renderer leaves to the BRDF (Bruneton 2010 §4). k_hi may be +∞ when it converges.
-struct WindSlopeVariance {
-  double upwind = 0.0;
-  double crosswind = 0.0;
-};
-WindSlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
-                                      const QuadratureTolerance& tolerance = {});
+SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
+                                  const QuadratureTolerance& tolerance = {});
 
 // ∫_{−π}^{π} g(θ) D(k, θ) dθ with θ the absolute direction, split at the wind direction.
 QuadratureResult integrate_over_direction(const Spectrum& s, double k,
