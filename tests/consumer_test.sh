@@ -52,8 +52,10 @@ for kind in static shared; do
   # The shared consumer must load the installed liboceanref.so (through its RUNPATH), not
   # carry the library's code itself.
   if [ "$kind" = shared ]; then
-    ldd "$work/$kind/consumer" | grep -q "$soname => $libdir/$soname " ||
-      fail "shared: the consumer does not load $libdir/$soname: $(ldd "$work/$kind/consumer")"
+    # (ldd's output captured first: grep -q closing the pipe early would fail it under pipefail)
+    loaded=$(ldd "$work/$kind/consumer")
+    grep -q "$soname => $libdir/$soname " <<<"$loaded" ||
+      fail "shared: the consumer does not load $libdir/$soname: $loaded"
   else
     ! ldd "$work/$kind/consumer" | grep -q liboceanref ||
       fail "static: the consumer loads a shared liboceanref"
