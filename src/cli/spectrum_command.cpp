@@ -48,9 +48,10 @@ std::string flag_for(const std::string& key) {
   return it == flags.end() ? key : it->second;
 }
 
-std::optional<double> optional_number(const std::string& flag, const std::string& text) {
+std::optional<double> optional_number(const std::string& flag, const std::string& text,
+                                      const std::string& range) {
   if (text.empty()) return std::nullopt;
-  return parse_number(flag, text);
+  return parse_number(flag, text, false, range);
 }
 
 SpectrumSettings settings_from(const SpectrumFlags& f) {
@@ -60,18 +61,15 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
     throw UsageError("--model",
                      "expected one of phillips, pierson-moskowitz, jonswap, tma, "
                      "donelan, unified; got '" +
-                         f.model + "'");
+                         escape_value(f.model) + "'");
   }
   s.model = *model;
-  s.wind_speed = parse_number("--wind-speed", f.wind_speed);
-  s.fetch = parse_number("--fetch", f.fetch);
-  s.depth = parse_number("--depth", f.depth, true);
-  s.gravity = parse_number("--gravity", f.gravity);
-  const double direction_deg = parse_number("--wind-direction-deg", f.wind_direction);
-  if (std::fabs(direction_deg) > 720.0) {
-    throw UsageError("--wind-direction-deg",
-                     "must be in [-720, 720] degrees, got " + f.wind_direction);
-  }
+  s.wind_speed = parse_number("--wind-speed", f.wind_speed, false, "[0.1, 60] m/s");
+  s.fetch = parse_number("--fetch", f.fetch, false, "[1, 1e+07] m");
+  s.depth = parse_number("--depth", f.depth, true, "[0.01, inf] m");
+  s.gravity = parse_number("--gravity", f.gravity, false, "[0.1, 100] m/s^2");
+  const double direction_deg =
+      parse_number_in("--wind-direction-deg", f.wind_direction, -720.0, 720.0, " degrees");
   s.wind_direction = direction_deg * kDegree;
   if (!f.spreading.empty()) {
     s.spreading = parse_spreading_model(f.spreading);
@@ -79,39 +77,39 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
       throw UsageError("--spreading",
                        "expected one of cos2, cos4, mitsuyasu, hasselmann, "
                        "mastin, gamper, donelan, donelan-banner, unified; got '" +
-                           f.spreading + "'");
+                           escape_value(f.spreading) + "'");
     }
   }
   if (!f.dispersion.empty()) {
     s.dispersion = parse_dispersion(f.dispersion);
     if (!s.dispersion) {
-      throw UsageError("--dispersion",
-                       "expected one of deep, finite-depth, capillary; got '" + f.dispersion + "'");
+      throw UsageError("--dispersion", "expected one of deep, finite-depth, capillary; got '" +
+                                           escape_value(f.dispersion) + "'");
     }
   }
-  s.swell = parse_number("--swell", f.swell);
-  s.spread_blend = parse_number("--spread-blend", f.spread_blend);
-  s.gamma = optional_number("--gamma", f.gamma);
-  s.alpha = optional_number("--alpha", f.alpha);
-  s.peak_frequency = optional_number("--peak-omega", f.peak_omega);
-  s.sigma_low = optional_number("--sigma-low", f.sigma_low);
-  s.sigma_high = optional_number("--sigma-high", f.sigma_high);
+  s.swell = parse_number("--swell", f.swell, false, "[0, 1]");
+  s.spread_blend = parse_number("--spread-blend", f.spread_blend, false, "[0, 1]");
+  s.gamma = optional_number("--gamma", f.gamma, "[1, 20]");
+  s.alpha = optional_number("--alpha", f.alpha, "(0, 10]");
+  s.peak_frequency = optional_number("--peak-omega", f.peak_omega, "(0, 1e+04] rad/s");
+  s.sigma_low = optional_number("--sigma-low", f.sigma_low, "(0, 1]");
+  s.sigma_high = optional_number("--sigma-high", f.sigma_high, "(0, 1]");
   if (f.pm_wind == "u10") {
     s.pm_wind = PiersonMoskowitzWind::u10;
   } else if (f.pm_wind == "u19.5") {
     s.pm_wind = PiersonMoskowitzWind::u19_5;
   } else {
-    throw UsageError("--pm-wind", "expected u10 or u19.5, got '" + f.pm_wind + "'");
+    throw UsageError("--pm-wind", "expected u10 or u19.5, got '" + escape_value(f.pm_wind) + "'");
   }
   if (f.tma_attenuation == "exact") {
     s.depth_attenuation = DepthAttenuation::exact;
   } else if (f.tma_attenuation == "thompson-vincent") {
     s.depth_attenuation = DepthAttenuation::thompson_vincent;
   } else {
-    throw UsageError("--tma-attenuation",
-                     "expected exact or thompson-vincent, got '" + f.tma_attenuation + "'");
+    throw UsageError("--tma-attenuation", "expected exact or thompson-vincent, got '" +
+                                              escape_value(f.tma_attenuation) + "'");
   }
-  s.phillips_suppression = parse_number("--phillips-suppression", f.suppression);
+  s.phillips_suppression = parse_number("--phillips-suppression", f.suppression, false, "[0, 0.1]");
   s.printed_spreading = f.printed;
   s.allow_extrapolation = f.allow_extrapolation;
   return s;
@@ -157,8 +155,8 @@ void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::str
     const std::string item = list.substr(start, comma - start);
     const std::size_t colon = item.find(':');
     if (colon == std::string::npos) {
-      throw UsageError("--wavevector",
-                       "expected kx:kz pairs separated by commas, got '" + item + "'");
+      throw UsageError("--wavevector", "expected kx:kz pairs separated by commas, got '" +
+                                           escape_value(item) + "'");
     }
     ks.push_back({parse_number("--wavevector", item.substr(0, colon)),
                   parse_number("--wavevector", item.substr(colon + 1))});
@@ -174,10 +172,10 @@ void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::str
 
 void write_moments(std::ostream& out, const Spectrum& s, const std::string& k_max_text) {
   const double k_max =
-      k_max_text.empty() ? kDefaultMaxWavenumber : parse_number("--k-max", k_max_text, true);
+      k_max_text.empty() ? kDefaultMaxWavenumber : parse_number("--k-max", k_max_text, false, "(k_p, 1e+06] rad/m");
   if (!(k_max > s.peak_wavenumber) || k_max > kMaxMomentWavenumber) {
     throw UsageError("--k-max", "must be in (k_p, 1e6] rad/m with the peak wavenumber k_p = " +
-                                    format_number(s.peak_wavenumber) + " rad/m, got " + k_max_text);
+                                    format_number(s.peak_wavenumber) + " rad/m, got " + escape_value(k_max_text));
   }
   SpectralMoments m;
   try {
@@ -262,7 +260,7 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
       cmd->add_flag("--moments", flags->moments,
                     "CSV m0,Hs,mss_x,mss_z,mss by adaptive quadrature over 0 < k <= --k-max");
   cmd->add_option("--k-max", flags->k_max,
-                  "upper wavenumber of --moments [rad/m] or inf (default 363.19 = 2pi/1.73 cm, "
+                  "upper wavenumber of --moments [rad/m] in (k_p, 1e6] (default 363.19 = 2pi/1.73 cm, "
                   "Gamper 4.4)")
       ->needs(moments);
   omega->excludes(wavevector)->excludes(moments);
