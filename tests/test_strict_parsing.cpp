@@ -99,10 +99,15 @@ TEST_CASE("strict parsing: bytes after the value and NUL bytes") {
                                 ": a NUL byte (a scene file is UTF-8 JSON text)");
   CHECK(scene_error(std::string("\0", 1)) ==
         "scene.json: not valid JSON at byte 0: a NUL byte (a scene file is UTF-8 JSON text)");
-  // Raw bytes in a syntax error are escaped: nlohmann's "last read" quotes the input.
-  const std::string raw = scene_error("{\"seed\": \x1b[2J}");
+  // Raw bytes in a syntax error are escaped: nlohmann's "last read" quotes the input (it writes
+  // control bytes as <U+001B> itself, but passes bytes over 0x7F through).
+  const std::string raw = scene_error("{\"seed\": \x1b[2J\xff}");
   CHECK(raw.find('\x1b') == std::string::npos);
-  CHECK(raw.find("\\x1B") != std::string::npos);
+  CHECK(raw.find("\xff") == std::string::npos);
+  CHECK(raw.find("last read: '\"seed\": <U+001B>'") != std::string::npos);
+  const std::string high = scene_error("{\"seed\": \xff\xfe}");
+  CHECK(high.find("\xff") == std::string::npos);
+  CHECK(high.find("last read: '\"seed\": \\xFF'") != std::string::npos);
 }
 
 TEST_CASE("strict parsing: numbers that overflow a double name the JSON path") {
