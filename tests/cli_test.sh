@@ -418,9 +418,9 @@ expect 2 'REFERENCE' bench lighting-pixels "$tmp/aov.exr" "$tmp/missing.exr"
 printf '{"seed": 1, "waves": {"resolution": 8, "resolution": 16}}' >"$tmp/strict.json"
 expect 2 '^oceanref: waves.resolution: duplicate key' fields "$tmp/strict.json" --at 0,0
 printf '{"waves": {"resolution": 8}} x' >"$tmp/strict.json"
-expect 2 'strict.json: not valid JSON at byte 29: .*expected end of input' fields "$tmp/strict.json" --at 0,0
+expect 2 'strict.json: not valid JSON: parse error at line 1, column 30: .*expected end of input' fields "$tmp/strict.json" --at 0,0
 printf '{"waves": {"resolution": 8}}\0garbage' >"$tmp/strict.json"
-expect 2 'strict.json: not valid JSON at byte 28: a NUL byte' fields "$tmp/strict.json" --at 0,0
+expect 2 'strict.json: not valid JSON: a NUL byte at line 1, column 29' fields "$tmp/strict.json" --at 0,0
 printf '{"waves": {"spectrum": {"wind_speed": 1e309}}}' >"$tmp/strict.json"
 expect 2 '^oceanref: waves.spectrum.wind_speed: the number 1e309 is out of the range of a double' fields "$tmp/strict.json" --at 0,0
 printf '{"waves": {"resolution": 18446744073709551615}}' >"$tmp/strict.json"

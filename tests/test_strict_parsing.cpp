@@ -90,15 +90,18 @@ TEST_CASE("strict parsing: duplicate keys at any depth name their path") {
 TEST_CASE("strict parsing: bytes after the value and NUL bytes") {
   CHECK(scene_error(kBase + " \n\t ").empty());
   const std::string trailing = scene_error(kBase + " x");
-  CHECK(trailing.rfind("scene.json: not valid JSON at byte ", 0) == 0);
+  CHECK(trailing.rfind("scene.json: not valid JSON: parse error at line 2, column 70: ", 0) == 0);
   CHECK(trailing.find("expected end of input") != std::string::npos);
-  CHECK(scene_error(kBase + " {}").rfind("scene.json: not valid JSON at byte ", 0) == 0);
+  CHECK(scene_error("{} {}").rfind("scene.json: not valid JSON: parse error at line 1, column 4: ",
+                                   0) == 0);
   // A NUL byte ends nlohmann's input: "{...}\0garbage" used to parse.
   const std::string nul = kBase + std::string("\0garbage", 8);
-  CHECK(scene_error(nul) == "scene.json: not valid JSON at byte " + std::to_string(kBase.size()) +
-                                ": a NUL byte (a scene file is UTF-8 JSON text)");
+  CHECK(scene_error(nul) ==
+        "scene.json: not valid JSON: a NUL byte at line 2, column 69 (a scene file is UTF-8 JSON "
+        "text)");
   CHECK(scene_error(std::string("\0", 1)) ==
-        "scene.json: not valid JSON at byte 0: a NUL byte (a scene file is UTF-8 JSON text)");
+        "scene.json: not valid JSON: a NUL byte at line 1, column 1 (a scene file is UTF-8 JSON "
+        "text)");
   // Raw bytes in a syntax error are escaped: nlohmann's "last read" quotes the input (it writes
   // control bytes as <U+001B> itself, but passes bytes over 0x7F through).
   const std::string raw = scene_error("{\"seed\": \x1b[2J\xff}");

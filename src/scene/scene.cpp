@@ -156,7 +156,8 @@ class StrictSceneSax {
     frames_.pop_back();
     return value(dom_.end_array());
   }
-  bool parse_error(std::size_t position, const std::string& last_token, const json::exception& e) {
+  bool parse_error(std::size_t /*position*/, const std::string& last_token,
+                   const json::exception& e) {
     if (e.id == 406) {  // out_of_range.406: a number that overflows a double
       throw SceneError(path(), "the number " + escape_value(last_token) +
                                    " is out of the range of a double (accepted: finite numbers, "
@@ -167,8 +168,8 @@ class StrictSceneSax {
     if (what.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos) {
       what = what.substr(bracket + 2);
     }
-    throw SceneError(source_, "not valid JSON at byte " + std::to_string(position) + ": " +
-                                  escape_value(what, 200));
+    // nlohmann's message gives the line and column (1-based) of the offending byte.
+    throw SceneError(source_, "not valid JSON: " + escape_value(what, 200));
   }
 
   std::string source_;
@@ -792,8 +793,13 @@ json parse_scene_json(std::string_view text, const std::string& source) {
   // nlohmann's lexer takes a NUL byte for the end of the input, so "{} \0 garbage" would parse.
   const std::size_t nul = text.find('\0');
   if (nul != std::string_view::npos) {
-    throw SceneError(source, "not valid JSON at byte " + std::to_string(nul) +
-                                 ": a NUL byte (a scene file is UTF-8 JSON text)");
+    const std::size_t line_start = text.rfind('\n', nul);
+    const std::size_t line =
+        1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + nul, '\n'));
+    const std::size_t column = line_start == std::string_view::npos ? nul + 1 : nul - line_start;
+    throw SceneError(source, "not valid JSON: a NUL byte at line " + std::to_string(line) +
+                                 ", column " + std::to_string(column) +
+                                 " (a scene file is UTF-8 JSON text)");
   }
   json document;
   StrictSceneSax sax(document);
