@@ -117,8 +117,7 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
       ->check(integer_in(0, 1024, " (0: all cores)"));
   return [f](std::ostream& out) {
     const int threads = resolve_threads(f->threads);
-    const std::vector<double> xy =
-        parse_number_list("--pixel", f->pixel);
+    const std::vector<double> xy = parse_number_list("--pixel", f->pixel);
     const auto p = prepare_render(load_scene(f->scene), threads, 0, log_progress);
     p->job.estimate_fast_error = true;  // probe prints each term's error in either mode
     if (xy.size() != 2 || xy[0] < 0 || xy[1] < 0 || xy[0] >= p->scene.image.width ||

@@ -158,8 +158,8 @@ void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::str
       throw UsageError("--wavevector", "expected kx:kz pairs separated by commas, got '" +
                                            escape_value(item) + "'");
     }
-    ks.push_back({parse_number("--wavevector", item.substr(0, colon)),
-                  parse_number("--wavevector", item.substr(colon + 1))});
+    ks.push_back({parse_number("--wavevector", item.substr(0, colon), false, "in rad/m"),
+                  parse_number("--wavevector", item.substr(colon + 1), false, "in rad/m")});
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -171,11 +171,13 @@ void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::str
 }
 
 void write_moments(std::ostream& out, const Spectrum& s, const std::string& k_max_text) {
-  const double k_max =
-      k_max_text.empty() ? kDefaultMaxWavenumber : parse_number("--k-max", k_max_text, false, "(k_p, 1e+06] rad/m");
+  const double k_max = k_max_text.empty()
+                           ? kDefaultMaxWavenumber
+                           : parse_number("--k-max", k_max_text, true, "(k_p, 1e+06] rad/m");
   if (!(k_max > s.peak_wavenumber) || k_max > kMaxMomentWavenumber) {
     throw UsageError("--k-max", "must be in (k_p, 1e6] rad/m with the peak wavenumber k_p = " +
-                                    format_number(s.peak_wavenumber) + " rad/m, got " + escape_value(k_max_text));
+                                    format_number(s.peak_wavenumber) + " rad/m, got " +
+                                    escape_value(k_max_text));
   }
   SpectralMoments m;
   try {
@@ -260,7 +262,7 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
       cmd->add_flag("--moments", flags->moments,
                     "CSV m0,Hs,mss_x,mss_z,mss by adaptive quadrature over 0 < k <= --k-max");
   cmd->add_option("--k-max", flags->k_max,
-                  "upper wavenumber of --moments [rad/m] in (k_p, 1e6] (default 363.19 = 2pi/1.73 cm, "
+                  "upper wavenumber of --moments [rad/m] or inf (default 363.19 = 2pi/1.73 cm, "
                   "Gamper 4.4)")
       ->needs(moments);
   omega->excludes(wavevector)->excludes(moments);
@@ -272,15 +274,18 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
     }
     const Spectrum s = spectrum_from(*flags);
     if (!flags->omega.empty()) {
-      const std::vector<double> omegas = parse_number_list("--omega", flags->omega);
+      const std::vector<double> omegas =
+          parse_number_list("--omega", flags->omega, ">= 0 rad/s each");
       for (const double w : omegas) {
         if (w < 0.0)
-          throw UsageError("--omega", "frequencies must be >= 0, got " + format_number(w));
+          throw UsageError("--omega",
+                           "frequencies must be finite and >= 0 rad/s, got " + format_number(w));
       }
       if (flags->theta.empty()) {
         write_omega_table(out, s, omegas);
       } else {
-        write_directional_table(out, s, omegas, parse_number_list("--theta-deg", flags->theta));
+        write_directional_table(out, s, omegas,
+                                parse_number_list("--theta-deg", flags->theta, "in degrees, each"));
       }
     } else if (!flags->wavevector.empty()) {
       write_wavevector_table(out, s, flags->wavevector);

@@ -49,9 +49,11 @@ double parse_number(const std::string& flag, std::string_view text, bool allow_i
   const bool whole = !s.empty() && end == s.c_str() + s.size() &&
                      !std::isspace(static_cast<unsigned char>(s.front()));
   if (!whole || !std::isfinite(v) || errno == ERANGE) {
-    throw UsageError(flag, "expected a finite number" +
-                               std::string(allow_infinity ? " or inf" : "") +
-                               (range.empty() ? "" : " in " + range) + ", got " + quote_value(s));
+    throw UsageError(
+        flag,
+        "expected a finite number" + std::string(allow_infinity ? " or inf" : "") +
+            (range.empty() ? "" : (range[0] == '[' || range[0] == '(' ? " in " : " ") + range) +
+            ", got " + quote_value(s));
   }
   return v;
 }
@@ -60,7 +62,8 @@ double parse_number_in(const std::string& flag, std::string_view text, double lo
                        const std::string& unit) {
   const std::string range = range_text(lo, hi, unit);
   const double v = parse_number(flag, text, false, range);
-  if (v < lo || v > hi) throw UsageError(flag, "must be in " + range + ", got " + quote_value(text));
+  if (v < lo || v > hi)
+    throw UsageError(flag, "must be in " + range + ", got " + quote_value(text));
   return v;
 }
 

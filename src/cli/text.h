@@ -34,8 +34,9 @@ int resolve_threads(int requested);
 void progress(std::string_view who, const std::string& message);
 
 // The whole text must be one finite number ("inf" accepted when allow_infinity). The message of a
-// bad value quotes it escaped (escape_value) and, when `range` is given (e.g. "[0, 180] degrees"),
-// states the accepted range.
+// bad value quotes it escaped (escape_value) and, when `range` is given, states the accepted range
+// ("[0, 180] degrees" or "(0, 1]" read "in [0, 180] degrees", "in (0, 1]"; other text, e.g.
+// ">= 0 rad/s", follows as is).
 double parse_number(const std::string& flag, std::string_view text, bool allow_infinity = false,
                     const std::string& range = "");
 // One finite number in [lo, hi] (the message states the range, with `unit` after it).
