@@ -90,6 +90,12 @@ expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments -
 expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 0.01
 expect 2 '--spreading.*donelan-banner' spectrum --model jonswap --spreading cos3 --omega 1
 expect 2 '--dispersion.*finite-depth' spectrum --model jonswap --dispersion shallow --omega 1
+# Every choice is parsed from its enum's one table (core/choice.h): the flag, the valid names,
+# the value given.
+expect 2 "^oceanref: --pm-wind: expected u10 or u19.5; got 'u20'$" \
+  spectrum --model pierson-moskowitz --pm-wind u20 --omega 1
+expect 2 "^oceanref: --tma-attenuation: expected exact or thompson-vincent; got 'kitaigorodskii'$" \
+  spectrum --model tma --depth 20 --tma-attenuation kitaigorodskii --omega 1
 expect 2 '--swell.*\[0, 1\]' spectrum --model jonswap --swell 2 --omega 1
 expect 2 '--gamma.*\[1, 20\]' spectrum --model jonswap --gamma 0.5 --omega 1
 expect 2 '--omega.*finite number' spectrum --model jonswap --omega 1,nan
@@ -137,7 +143,7 @@ expect 0 '^cascade,field' fields "$tmp/high.json" --at 0,0 --time 7
 awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
   fail "fields --at 0,0 (high_resolution): FFT and direct summation differ by more than 1e-12"
 sed 's/high_resolution/per_pixel/' "$tmp/high.json" >"$tmp/bad_normals.json"
-expect 2 'shading.normals: expected surface .* or high_resolution' fields "$tmp/bad_normals.json" --at 0,0
+expect 2 "shading.normals: expected surface or high_resolution; got 'per_pixel'" fields "$tmp/bad_normals.json" --at 0,0
 printf '{"waves": {"resolution": 48}}' >"$tmp/bad.json"
 expect 2 'waves.resolution.*power of two' fields "$tmp/bad.json" --at 0,0
 printf '{"waves": {"choppiness": 0.5}}' >"$tmp/bad.json"
@@ -184,6 +190,8 @@ expect 0 '^quantity,value$' brdf --view -0.6,0.5,0 --sun 0.6,0.5,0 --sigma2 0.02
 grep -q '^F_mean,' "$tmp/out" || fail "brdf does not print F_mean"
 expect 2 '--sigma2.*\[1e-6, 1\]' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0,0.01
 expect 2 '--fresnel.*exact or schlick' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --fresnel x
+expect 2 "^oceanref: --accuracy: expected reference or fast; got 'x'$" \
+  brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --accuracy x
 # Reference accuracy (the default, as in render): every integral with its error estimate, within
 # the tolerance; L_sky.R of this case is 228.41 (converged; the old order-32 rule gave 222.5).
 b=(brdf --view 0.3,0.5,0.8 --sun 0.2,0.4,0.9 --sigma2 0.02,0.015)

@@ -11,7 +11,10 @@
 #include <string>
 
 #include "cli/text.h"
+#include "core/choice.h"
+#include "core/format.h"
 #include "scene/scene.h"
+#include "waves/ocean.h"
 
 using namespace oceanref;
 using nlohmann::json;
@@ -182,12 +185,13 @@ TEST_CASE("strict parsing: wrong types name the path, the expected type and rang
   // Echoed values are escaped and cut.
   const std::string long_text = std::string(200, 'y');
   CHECK(scene_error(R"({"waves": {"realization": ")" + long_text + "\"}}") ==
-        "waves.realization: expected gaussian (Gamper eq. 4.2) or mastin (Mastin 1987 "
-        "white-noise filter); got '" +
-            std::string(64, 'y') + "\u2026'");
+        "waves.realization: expected gaussian or mastin; got '" + std::string(64, 'y') + "\u2026'");
   CHECK(scene_error(R"({"waves": {"realization": "\u001b[2J"}})") ==
-        "waves.realization: expected gaussian (Gamper eq. 4.2) or mastin (Mastin 1987 "
-        "white-noise filter); got '\\x1B[2J'");
+        "waves.realization: expected gaussian or mastin; got '\\x1B[2J'");
+  // The same escaping in the command line's choices (core/choice.h).
+  CHECK(usage_error([] {
+          (void)parse_choice<cli::UsageError>(kRealizations, "--x", "\xff\x1b");
+        }) == "--x: expected gaussian or mastin; got '\\xFF\\x1B'");
   CHECK(scene_error(R"({"waves": {"resolution": "\u001b"}})") ==
         "waves.resolution: expected an integer in [4, 8192], got the string \"\\\\u001b\"");
 }

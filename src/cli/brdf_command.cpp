@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/text.h"
+#include "core/choice.h"
 #include "core/math.h"
 #include "shading/lighting_terms.h"
 
@@ -97,26 +98,12 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
                        "expected r,g,b each in [0, 1], got '" + escape_value(f->sea) + "'");
     }
     BrdfOptions options;
-    if (f->fresnel == "schlick") {
-      options.fresnel = FresnelForm::schlick;
-    } else if (f->fresnel != "exact") {
-      throw UsageError("--fresnel",
-                       "expected exact or schlick, got '" + escape_value(f->fresnel) + "'");
-    }
-    if (f->erfc == "rational") {
-      options.erfc = ErfcForm::rational;
-    } else if (f->erfc != "exact") {
-      throw UsageError("--erfc", "expected exact or rational, got '" + escape_value(f->erfc) + "'");
-    }
+    options.fresnel = parse_choice<UsageError>(kShadingFresnelForms, "--fresnel", f->fresnel);
+    options.erfc = parse_choice<UsageError>(kErfcForms, "--erfc", f->erfc);
     ShadingSettings shading;
     shading.brdf = options;
     shading.sea_colour = {sea[0], sea[1], sea[2]};
-    if (f->accuracy == "fast") {
-      shading.accuracy = LightingAccuracy::fast;
-    } else if (f->accuracy != "reference") {
-      throw UsageError("--accuracy",
-                       "expected reference or fast, got '" + escape_value(f->accuracy) + "'");
-    }
+    shading.accuracy = parse_choice<UsageError>(kLightingAccuracies, "--accuracy", f->accuracy);
     const bool fast = shading.accuracy == LightingAccuracy::fast;
     if (fast && cmd->count("--tolerance") > 0) {
       throw UsageError("--tolerance", "applies to --accuracy reference only");

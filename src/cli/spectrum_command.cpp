@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/text.h"
+#include "core/choice.h"
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
 
@@ -56,14 +57,7 @@ std::optional<double> optional_number(const std::string& flag, const std::string
 
 SpectrumSettings settings_from(const SpectrumFlags& f) {
   SpectrumSettings s;
-  const auto model = parse_spectrum_model(f.model);
-  if (!model) {
-    throw UsageError("--model",
-                     "expected one of phillips, pierson-moskowitz, jonswap, tma, "
-                     "donelan, unified; got '" +
-                         escape_value(f.model) + "'");
-  }
-  s.model = *model;
+  s.model = parse_choice<UsageError>(kSpectrumModels, "--model", f.model);
   s.wind_speed = parse_number("--wind-speed", f.wind_speed, false, "[0.1, 60] m/s");
   s.fetch = parse_number("--fetch", f.fetch, false, "[1, 1e+07] m");
   s.depth = parse_number("--depth", f.depth, true, "[0.01, inf] m");
@@ -72,20 +66,10 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
       parse_number_in("--wind-direction-deg", f.wind_direction, -720.0, 720.0, " degrees");
   s.wind_direction = direction_deg * kDegree;
   if (!f.spreading.empty()) {
-    s.spreading = parse_spreading_model(f.spreading);
-    if (!s.spreading) {
-      throw UsageError("--spreading",
-                       "expected one of cos2, cos4, mitsuyasu, hasselmann, "
-                       "mastin, gamper, donelan, donelan-banner, unified; got '" +
-                           escape_value(f.spreading) + "'");
-    }
+    s.spreading = parse_choice<UsageError>(kSpreadingModels, "--spreading", f.spreading);
   }
   if (!f.dispersion.empty()) {
-    s.dispersion = parse_dispersion(f.dispersion);
-    if (!s.dispersion) {
-      throw UsageError("--dispersion", "expected one of deep, finite-depth, capillary; got '" +
-                                           escape_value(f.dispersion) + "'");
-    }
+    s.dispersion = parse_choice<UsageError>(kDispersionKinds, "--dispersion", f.dispersion);
   }
   s.swell = parse_number("--swell", f.swell, false, "[0, 1]");
   s.spread_blend = parse_number("--spread-blend", f.spread_blend, false, "[0, 1]");
@@ -94,21 +78,9 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
   s.peak_frequency = optional_number("--peak-omega", f.peak_omega, "(0, 1e+04] rad/s");
   s.sigma_low = optional_number("--sigma-low", f.sigma_low, "(0, 1]");
   s.sigma_high = optional_number("--sigma-high", f.sigma_high, "(0, 1]");
-  if (f.pm_wind == "u10") {
-    s.pm_wind = PiersonMoskowitzWind::u10;
-  } else if (f.pm_wind == "u19.5") {
-    s.pm_wind = PiersonMoskowitzWind::u19_5;
-  } else {
-    throw UsageError("--pm-wind", "expected u10 or u19.5, got '" + escape_value(f.pm_wind) + "'");
-  }
-  if (f.tma_attenuation == "exact") {
-    s.depth_attenuation = DepthAttenuation::exact;
-  } else if (f.tma_attenuation == "thompson-vincent") {
-    s.depth_attenuation = DepthAttenuation::thompson_vincent;
-  } else {
-    throw UsageError("--tma-attenuation", "expected exact or thompson-vincent, got '" +
-                                              escape_value(f.tma_attenuation) + "'");
-  }
+  s.pm_wind = parse_choice<UsageError>(kPiersonMoskowitzWinds, "--pm-wind", f.pm_wind);
+  s.depth_attenuation =
+      parse_choice<UsageError>(kDepthAttenuations, "--tma-attenuation", f.tma_attenuation);
   s.phillips_suppression = parse_number("--phillips-suppression", f.suppression, false, "[0, 0.1]");
   s.printed_spreading = f.printed;
   s.allow_extrapolation = f.allow_extrapolation;
@@ -174,10 +146,11 @@ void write_moments(std::ostream& out, const Spectrum& s, const std::string& k_ma
   const double k_max = k_max_text.empty()
                            ? kDefaultMaxWavenumber
                            : parse_number("--k-max", k_max_text, true, "(k_p, 1e+06] rad/m");
-  if (!(k_max > s.peak_wavenumber) || k_max > kMaxMomentWavenumber) {
-    throw UsageError("--k-max", "must be in (k_p, 1e6] rad/m with the peak wavenumber k_p = " +
-                                    format_number(s.peak_wavenumber) + " rad/m, got " +
-                                    escape_value(k_max_text));
+  if (!(k_max > s.peak_wavenumber) || (k_max > kMaxMomentWavenumber && k_max != HUGE_VAL)) {
+    throw UsageError("--k-max",
+                     "must be in (k_p, 1e6] rad/m or inf, with the peak wavenumber k_p = " +
+                         format_number(s.peak_wavenumber) + " rad/m, got " +
+                         escape_value(k_max_text));
   }
   SpectralMoments m;
   try {

@@ -1,5 +1,7 @@
 #include "cli/text.h"
 
+#include "core/direction.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,8 +12,6 @@
 #include <cstdlib>
 #include <iostream>
 #include <thread>
-
-#include "scene/scene.h"
 
 namespace oceanref::cli {
 
@@ -127,13 +127,9 @@ std::vector<double> parse_number_list(const std::string& flag, std::string_view 
 std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_view text) {
   const std::vector<double> v = parse_number_list(flag, text);
   if (v.size() != 3) throw UsageError(flag, "expected x,y,z, got " + quote_value(text));
-  // Scaled by the largest component first, so that neither 1e308 (whose square overflows) nor
-  // 1e-300 (whose square underflows) loses the direction.
-  const double scale = std::max({std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])});
-  if (!(scale > 0.0)) throw UsageError(flag, "the vector must not be zero");
-  const double x = v[0] / scale, y = v[1] / scale, z = v[2] / scale;
-  const double length = std::sqrt(x * x + y * y + z * z);
-  return {x / length, y / length, z / length};
+  const std::optional<std::array<double, 3>> d = unit_direction({v[0], v[1], v[2]});
+  if (!d) throw UsageError(flag, "the vector must not be zero");
+  return *d;
 }
 
 int resolve_threads(int requested) {

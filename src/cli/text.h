@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "core/format.h"
-#include "scene/scene.h"  // escape_value
 
 namespace oceanref::cli {
 

@@ -14,6 +14,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "core/choice.h"
+#include "core/format.h"
 #include "core/fp_environment.h"
 #include "shading/reference_lighting.h"
 
@@ -89,26 +91,6 @@ const std::vector<std::string>& scene_key_paths() {
       "render.tone_white",
   };
   return paths;
-}
-
-std::string escape_value(std::string_view text, std::size_t max_bytes) {
-  static const char* const hex = "0123456789ABCDEF";
-  std::string out;
-  const std::size_t n = std::min(text.size(), max_bytes);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '\\') {
-      out += "\\\\";
-    } else if (c >= 0x20 && c < 0x7F) {
-      out += static_cast<char>(c);
-    } else {
-      out += "\\x";
-      out += hex[c >> 4];
-      out += hex[c & 0xF];
-    }
-  }
-  if (text.size() > max_bytes) out += "\u2026";
-  return out;
 }
 
 namespace {
@@ -343,15 +325,10 @@ struct Section {
   }
 };
 
-template <class T>
-T choice(const Section& s, const char* key, std::optional<T> (*parse)(std::string_view),
-         const std::string& fallback, const char* accepted) {
-  const std::string name = s.text(key, fallback);
-  const std::optional<T> v = parse(name);
-  if (!v)
-    throw SceneError(s.where(key), std::string("expected one of ") + accepted + "; got '" +
-                                       escape_value(name) + "'");
-  return *v;
+// The choice of a table (core/choice.h) that the key names, `fallback` when it is absent.
+template <class Table>
+auto choice(const Section& s, const char* key, const Table& table, const std::string& fallback) {
+  return parse_choice<SceneError>(table, s.where(key), s.text(key, fallback));
 }
 
 bool is_power_of_two(int n) {
@@ -381,8 +358,7 @@ std::string spectrum_path(const std::string& key) {
 SpectrumSettings parse_spectrum(const Section& spectrum, const Section* spreading,
                                 const Section& waves) {
   SpectrumSettings s;
-  s.model = choice<SpectrumModel>(spectrum, "model", parse_spectrum_model, "jonswap",
-                                  "phillips, pierson-moskowitz, jonswap, tma, donelan, unified");
+  s.model = choice(spectrum, "model", kSpectrumModels, "jonswap");
   // Ranges are checked by make_spectrum (one place); here only types and finiteness.
   const double big = kTypeOnly;
   s.wind_speed = spectrum.number("wind_speed", s.wind_speed, -big, big);
@@ -396,35 +372,21 @@ SpectrumSettings parse_spectrum(const Section& spectrum, const Section* spreadin
   s.peak_frequency = spectrum.optional_number("peak_omega", -big, big);
   s.sigma_low = spectrum.optional_number("sigma_low", -big, big);
   s.sigma_high = spectrum.optional_number("sigma_high", -big, big);
-  const std::string pm = spectrum.text("pm_wind", "u10");
-  if (pm != "u10" && pm != "u19.5") {
-    throw SceneError(spectrum.where("pm_wind"),
-                     "expected u10 or u19.5; got '" + escape_value(pm) + "'");
-  }
-  s.pm_wind = pm == "u10" ? PiersonMoskowitzWind::u10 : PiersonMoskowitzWind::u19_5;
-  const std::string tma = spectrum.text("tma_attenuation", "exact");
-  if (tma != "exact" && tma != "thompson-vincent") {
-    throw SceneError(spectrum.where("tma_attenuation"),
-                     "expected exact or thompson-vincent; got '" + escape_value(tma) + "'");
-  }
-  s.depth_attenuation =
-      tma == "exact" ? DepthAttenuation::exact : DepthAttenuation::thompson_vincent;
+  s.pm_wind = choice(spectrum, "pm_wind", kPiersonMoskowitzWinds, "u10");
+  s.depth_attenuation = choice(spectrum, "tma_attenuation", kDepthAttenuations, "exact");
   s.phillips_suppression =
       spectrum.number("phillips_suppression", s.phillips_suppression, -big, big);
   s.allow_extrapolation = spectrum.boolean("allow_extrapolation", false);
   if (spreading != nullptr) {
     if (spreading->has("model")) {
-      s.spreading = choice<SpreadingModel>(
-          *spreading, "model", parse_spreading_model, "",
-          "cos2, cos4, mitsuyasu, hasselmann, mastin, gamper, donelan, donelan-banner, unified");
+      s.spreading = choice(*spreading, "model", kSpreadingModels, "");
     }
     s.swell = spreading->number("swell", s.swell, -big, big);
     s.spread_blend = spreading->number("spread_blend", s.spread_blend, -big, big);
     s.printed_spreading = spreading->boolean("printed", false);
   }
   if (waves.has("dispersion")) {
-    s.dispersion = choice<DispersionKind>(waves, "dispersion", parse_dispersion, "",
-                                          "deep, finite-depth, capillary");
+    s.dispersion = choice(waves, "dispersion", kDispersionKinds, "");
   }
   return s;
 }
@@ -543,24 +505,9 @@ void parse_rendering(const Section& top, Scene& scene) {
   h.sky = shading.boolean("sky", true);
   h.sea = shading.boolean("sea", true);
   h.whitecaps = shading.boolean("whitecaps", false);
-  const std::string fresnel = shading.text("fresnel", "exact");
-  if (fresnel != "exact" && fresnel != "schlick") {
-    throw SceneError("shading.fresnel",
-                     "expected exact or schlick; got '" + escape_value(fresnel) + "'");
-  }
-  h.brdf.fresnel = fresnel == "exact" ? FresnelForm::exact : FresnelForm::schlick;
-  const std::string erfc = shading.text("erfc", "exact");
-  if (erfc != "exact" && erfc != "rational") {
-    throw SceneError("shading.erfc",
-                     "expected exact or rational; got '" + escape_value(erfc) + "'");
-  }
-  h.brdf.erfc = erfc == "exact" ? ErfcForm::exact : ErfcForm::rational;
-  const std::string accuracy = shading.text("accuracy", "reference");
-  if (accuracy != "reference" && accuracy != "fast") {
-    throw SceneError("shading.accuracy",
-                     "expected reference or fast; got '" + escape_value(accuracy) + "'");
-  }
-  h.accuracy = accuracy == "reference" ? LightingAccuracy::reference : LightingAccuracy::fast;
+  h.brdf.fresnel = choice(shading, "fresnel", kShadingFresnelForms, "exact");
+  h.brdf.erfc = choice(shading, "erfc", kErfcForms, "exact");
+  h.accuracy = choice(shading, "accuracy", kLightingAccuracies, "reference");
   // Each setting belongs to one mode: a key of the other is a mistake, not something to ignore.
   const bool fast = h.accuracy == LightingAccuracy::fast;
   for (const char* key : {"sky_order", "sun_order"}) {
@@ -590,28 +537,8 @@ void parse_rendering(const Section& top, Scene& scene) {
   h.sea_colour = {sea.x, sea.y, sea.z};
   h.foam_albedo = shading.number("foam_albedo", h.foam_albedo, 0.0, 1.0);
   h.whitecap_threshold = shading.number("whitecap_threshold", h.whitecap_threshold, -10.0, 10.0);
-  const std::string interpolation = shading.text("interpolation", "bicubic");
-  if (interpolation == "bilinear") {
-    h.interpolation = Interpolation::bilinear;
-  } else if (interpolation == "bicubic") {
-    h.interpolation = Interpolation::bicubic;
-  } else if (interpolation == "direct") {
-    h.interpolation = Interpolation::direct;
-  } else {
-    throw SceneError("shading.interpolation", "expected bilinear, bicubic or direct; got '" +
-                                                  escape_value(interpolation) + "'");
-  }
-  const std::string normals = shading.text("normals", "surface");
-  if (normals == "surface") {
-    h.normals = ShadingNormals::surface;
-  } else if (normals == "high_resolution") {
-    h.normals = ShadingNormals::high_resolution;
-  } else {
-    throw SceneError("shading.normals",
-                     "expected surface (the normal of the rasterized surface) or high_resolution "
-                     "(the slopes of the N_h bands, Gamper 4.4); got '" +
-                         escape_value(normals) + "'");
-  }
+  h.interpolation = choice(shading, "interpolation", kInterpolations, "bicubic");
+  h.normals = choice(shading, "normals", kShadingNormals, "surface");
   const Section render(top.has("render") ? top.at("render") : empty, "render");
   ImageSettings& im = scene.image;
   im.width = render.integer("width", im.width, 1, 16384);
@@ -845,14 +772,7 @@ Scene parse_scene(const json& document) {
   w.choppiness =
       parse_choppiness(waves, w.sizes.size(), waves.boolean("allow_positive_choppiness", false));
   w.band_partitioning = waves.boolean("band_partitioning", true);
-  const std::string realization = waves.text("realization", "gaussian");
-  if (realization != "gaussian" && realization != "mastin") {
-    throw SceneError(waves.where("realization"),
-                     "expected gaussian (Gamper eq. 4.2) or mastin (Mastin 1987 white-noise "
-                     "filter); got '" +
-                         escape_value(realization) + "'");
-  }
-  w.realization = realization == "mastin" ? Realization::mastin : Realization::gaussian;
+  w.realization = choice(waves, "realization", kRealizations, "gaussian");
   if (w.band_partitioning) {
     for (std::size_t i = 1; i < w.sizes.size(); ++i) {
       if (!(w.sizes[i] < w.sizes[i - 1])) {

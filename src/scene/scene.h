@@ -88,15 +88,10 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads);
 // The memory cap for wave grids (bytes): scenes whose grids would need more are rejected.
 inline constexpr double kWaveMemoryCap = 8.0 * 1024 * 1024 * 1024;
 
-// A value quoted in an error message, safe for a terminal: printable ASCII as is, every other
-// byte (control bytes, NUL, DEL, all bytes of non-ASCII text) as \xNN and a backslash as \\;
-// text over `max_bytes` bytes is cut there and ends with "…".
-std::string escape_value(std::string_view text, std::size_t max_bytes = 64);
-
 // Parses scene text strictly (DESIGN.md, "Scene files"): one JSON value and nothing after it but
 // whitespace; no NUL byte anywhere; no key twice in one object; every number finite as a double.
 // Errors are SceneErrors naming the JSON path (e.g. "waves.cascades.sizes[1]") or, for syntax
-// errors, `source` and the byte offset; quoted input is escaped (escape_value).
+// errors, `source` with the line and column; quoted input is escaped (core/format.h escape_value).
 nlohmann::json parse_scene_json(std::string_view text, const std::string& source);
 
 Scene parse_scene(const nlohmann::json& document);
