@@ -28,13 +28,7 @@ PyScene scene_from_file(const std::string& path) {
 }
 
 PyScene scene_from_json(const std::string& text) {
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text, nullptr, true, false);
-  } catch (const nlohmann::json::exception& e) {
-    throw SceneError("(scene JSON)", std::string("not valid JSON: ") + e.what());
-  }
-  return {parse_scene(document)};
+  return {parse_scene(parse_scene_json(text, "(scene JSON)"))};
 }
 
 double scene_time(const Scene& scene, const std::optional<double>& time) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "core/format.h"
+
 namespace oceanref {
 
 template <class E>
@@ -47,7 +49,8 @@ std::string_view choice_name(const Table& table, typename Table::value_type::Enu
   return "?";
 }
 
-// The value named `text`, or throws Error(key, "expected a, b or c; got 'text'"): Error is the
+// The value named `text`, or throws Error(key, "expected a, b or c; got 'text'") (`text` escaped,
+// core/format.h escape_value): Error is the
 // caller's error type with a (key, message) constructor — SettingError, a scene's SceneError
 // (key: the JSON path), the command line's UsageError (the flag), the Python module's
 // ArgumentError (the keyword) — each of which shows the key before the message.
@@ -55,7 +58,7 @@ template <class Error, class Table>
 auto parse_choice(const Table& table, const std::string& key, std::string_view text) ->
     typename Table::value_type::Enum {
   if (const auto v = find_choice(table, text)) return *v;
-  throw Error(key, "expected " + choice_names(table) + "; got '" + std::string(text) + "'");
+  throw Error(key, "expected " + choice_names(table) + "; got '" + escape_value(text) + "'");
 }
 
 }  // namespace oceanref
