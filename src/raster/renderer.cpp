@@ -159,8 +159,7 @@ SlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings
   return slope_budget(job, waves).unresolved;
 }
 
-RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved,
-                     RenderTimes* times) {
+RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, RenderTimes* times) {
   OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
                    "a render job names its ocean and has >= 1 sample per axis");
   const ReferenceFpEnvironment fp;

@@ -100,7 +100,7 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
 }
 
 SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
-                                      const QuadratureTolerance& tolerance) {
+                                  const QuadratureTolerance& tolerance) {
   OCEANREF_EXPECTS(k_lo >= 0.0, "a band starts at a wavenumber >= 0, got " + std::to_string(k_lo));
   SlopeVariance out;
   if (!(k_hi > k_lo)) return out;
