@@ -90,6 +90,12 @@ expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments -
 expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 0.01
 expect 2 '--spreading.*donelan-banner' spectrum --model jonswap --spreading cos3 --omega 1
 expect 2 '--dispersion.*finite-depth' spectrum --model jonswap --dispersion shallow --omega 1
+# Every choice is parsed from its enum's one table (core/choice.h): the flag, the valid names,
+# the value given.
+expect 2 "^oceanref: --pm-wind: expected u10 or u19.5; got 'u20'$" \
+  spectrum --model pierson-moskowitz --pm-wind u20 --omega 1
+expect 2 "^oceanref: --tma-attenuation: expected exact or thompson-vincent; got 'kitaigorodskii'$" \
+  spectrum --model tma --depth 20 --tma-attenuation kitaigorodskii --omega 1
 expect 2 '--swell.*\[0, 1\]' spectrum --model jonswap --swell 2 --omega 1
 expect 2 '--gamma.*\[1, 20\]' spectrum --model jonswap --gamma 0.5 --omega 1
 expect 2 '--omega.*finite number' spectrum --model jonswap --omega 1,nan
@@ -137,7 +143,7 @@ expect 0 '^cascade,field' fields "$tmp/high.json" --at 0,0 --time 7
 awk -F, 'NR > 1 { d = $5 < 0 ? -$5 : $5; if (d > 1e-12) bad = 1 } END { exit bad }' "$tmp/out" ||
   fail "fields --at 0,0 (high_resolution): FFT and direct summation differ by more than 1e-12"
 sed 's/high_resolution/per_pixel/' "$tmp/high.json" >"$tmp/bad_normals.json"
-expect 2 'shading.normals: expected surface .* or high_resolution' fields "$tmp/bad_normals.json" --at 0,0
+expect 2 "shading.normals: expected surface or high_resolution; got 'per_pixel'" fields "$tmp/bad_normals.json" --at 0,0
 printf '{"waves": {"resolution": 48}}' >"$tmp/bad.json"
 expect 2 'waves.resolution.*power of two' fields "$tmp/bad.json" --at 0,0
 printf '{"waves": {"choppiness": 0.5}}' >"$tmp/bad.json"
@@ -184,6 +190,8 @@ expect 0 '^quantity,value$' brdf --view -0.6,0.5,0 --sun 0.6,0.5,0 --sigma2 0.02
 grep -q '^F_mean,' "$tmp/out" || fail "brdf does not print F_mean"
 expect 2 '--sigma2.*\[1e-6, 1\]' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0,0.01
 expect 2 '--fresnel.*exact or schlick' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --fresnel x
+expect 2 "^oceanref: --accuracy: expected reference or fast; got 'x'$" \
+  brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --accuracy x
 # Reference accuracy (the default, as in render): every integral with its error estimate, within
 # the tolerance; L_sky.R of this case is 228.41 (converged; the old order-32 rule gave 222.5).
 b=(brdf --view 0.3,0.5,0.8 --sun 0.2,0.4,0.9 --sigma2 0.02,0.015)
@@ -195,7 +203,7 @@ grep -q '^F_mean_error,' "$tmp/out" || fail "brdf does not print F_mean_error"
 expect 0 '^L_sea.G_error,' "${b[@]}" --tolerance 1e-9
 expect 2 '--order.*fast only' "${b[@]}" --order 32
 expect 2 '--tolerance.*reference only' "${b[@]}" --accuracy fast --tolerance 1e-6
-expect 2 '--tolerance.*\[1e-10, 1e-2\]' "${b[@]}" --tolerance 0.5
+expect 2 '--tolerance.*\[1e-10, 0.01\]' "${b[@]}" --tolerance 0.5
 expect 2 '--accuracy.*reference or fast' "${b[@]}" --accuracy exact
 expect 2 '--order.*\[1, 1024\]' "${b[@]}" --accuracy fast --order 1025
 # Every order the CLI accepts is finite and near the reference (the old rule broke from 199 on:
@@ -411,6 +419,57 @@ awk -F, 'NR == 2 { exit !($1 > 0 && $3 == 0 && $5 == 0 && $8 > 0) }' "$tmp/out" 
 expect 2 "no channel 'coverage'" bench lighting-pixels "$tmp/r1.exr" "$tmp/r1.exr"
 expect 2 'differ in size' bench lighting-pixels "$tmp/aov.exr" "$tmp/sky.exr"
 expect 2 'REFERENCE' bench lighting-pixels "$tmp/aov.exr" "$tmp/missing.exr"
+
+# --- strict parsing (issue 15 point 4): path/flag, escaped value and accepted range ------------
+# Scene JSON: duplicate keys, bytes after the value, a NUL byte, a double overflow, an integer
+# over 2^63, a wrong type.
+printf '{"seed": 1, "waves": {"resolution": 8, "resolution": 16}}' >"$tmp/strict.json"
+expect 2 '^oceanref: waves.resolution: duplicate key' fields "$tmp/strict.json" --at 0,0
+printf '{"waves": {"resolution": 8}} x' >"$tmp/strict.json"
+expect 2 'strict.json: not valid JSON: parse error at line 1, column 30: .*expected end of input' fields "$tmp/strict.json" --at 0,0
+printf '{"waves": {"resolution": 8}}\0garbage' >"$tmp/strict.json"
+expect 2 'strict.json: not valid JSON: a NUL byte at line 1, column 29' fields "$tmp/strict.json" --at 0,0
+printf '{"waves": {"spectrum": {"wind_speed": 1e309}}}' >"$tmp/strict.json"
+expect 2 '^oceanref: waves.spectrum.wind_speed: the number 1e309 is out of the range of a double' fields "$tmp/strict.json" --at 0,0
+printf '{"waves": {"resolution": 18446744073709551615}}' >"$tmp/strict.json"
+expect 2 '^oceanref: waves.resolution: must be in \[4, 8192\], got 18446744073709551615$' fields "$tmp/strict.json" --at 0,0
+printf '{"waves": {"minimum_wavelength": "1"}}' >"$tmp/strict.json"
+expect 2 '^oceanref: waves.minimum_wavelength: expected a number in \[0, 100\] m, got the string "1"$' fields "$tmp/strict.json" --at 0,0
+# Raw bytes never reach the terminal: an escape sequence in a value comes back as \x1B.
+printf '{"waves": {"realization": "\\u001b[2J"}}' >"$tmp/strict.json"
+expect 2 "waves.realization: .*got '\\\\x1B\[2J'" fields "$tmp/strict.json" --at 0,0
+checks=$((checks + 1))
+grep -q $'\x1b' "$tmp/err" && fail "an escape byte of a scene value reached stderr"
+# Command-line numbers: not a number, trailing bytes, overflow, out of range, non-finite; CLI11's
+# own conversions ("Could not convert") say the range too.
+expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\] \(0: all cores\), got 'abc'" render "$tmp/scene.json" -o "$tmp/strict.exr" --threads abc
+expect 2 "^oceanref: --threads: must be in \[0, 1024\] \(0: all cores\), got '99999999999999999999'" render "$tmp/scene.json" -o "$tmp/strict.exr" --threads 99999999999999999999
+expect 2 "^oceanref: --spp: expected an integer in \[1, 256\] \(a square number\), got '4x'" render "$tmp/scene.json" -o "$tmp/strict.exr" --spp 4x
+expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\]" fields "$tmp/scene.json" --at 0,0 --threads 1.5
+expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\]" probe "$tmp/scene.json" --pixel 0,0 --threads x
+expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\]" golden verify --threads x
+expect 2 "^oceanref: --size: must be in \[1, 8192\], got '0'" sky --sun-zenith-deg 10 --size 0 -o "$tmp/strict.exr"
+expect 2 "^oceanref: --size: expected an integer in \[1, 8192\], got '4x'" sky --sun-zenith-deg 10 --size 4x -o "$tmp/strict.exr"
+expect 2 "^oceanref: --resolution: expected an integer in \[4, 4096\] \(a power of two\), got 'x'" bench synthesis --resolution x
+expect 2 "^oceanref: --frames: must be in \[1, 100000\], got '0'" bench synthesis --frames 0
+expect 2 "^oceanref: --width: expected an integer in \[1, 16384\], got 'abc'" bench render --width abc
+expect 2 "^oceanref: --abs: expected a finite number in \[0, 1e\+30\], got 'x'" compare a.exr b.exr --abs x
+expect 2 "^oceanref: --max-fail-share: must be in \[0, 1\], got '2'" compare a.exr b.exr --max-fail-share 2
+expect 2 "^oceanref: --ulp: must be in \[0, 4294967296\], got '-1'" compare a.exr b.exr --ulp -1
+expect 2 "^oceanref: --order: expected an integer in \[1, 1024\], got '8.5'" brdf --view 0,1,1 --sun 0,1,1 --sigma2 0.01,0.01 --accuracy fast --order 8.5
+expect 2 "^oceanref: --sun-zenith-deg: expected a finite number in \[0, 180\] degrees, got '1e999'" sky --sun-zenith-deg 1e999 --sun
+expect 2 "^oceanref: --sun-zenith-deg: must be in \[0, 180\] degrees, got '200'" sky --sun-zenith-deg 200 --sun
+expect 2 "^oceanref: --turbidity: expected a finite number in \[2, 10\], got 'nan'" sky --sun-zenith-deg 10 --turbidity nan --sun
+expect 2 "^oceanref: --wind-speed: expected a finite number in \[0.1, 60\] m/s, got '10m'" spectrum --model jonswap --wind-speed 10m --omega 1
+expect 2 "^oceanref: --alpha: expected a finite number in \(0, 10\], got 'x'" spectrum --model jonswap --alpha x --omega 1
+expect 2 "^oceanref: --omega: expected a finite number >= 0 rad/s each, got '1e999'" spectrum --model jonswap --omega 1,1e999
+expect 2 "^oceanref: --time: expected a finite number in \[-10000000, 10000000\] s, got 'inf'" fields "$tmp/scene.json" --at 0,0 --time inf
+expect 2 "^oceanref: --sigma2: expected a finite number in \[1e-06, 1\] each, got '0.1x'" brdf --view 0,1,1 --sun 0,1,1 --sigma2 0.01,0.1x
+expect 2 "^oceanref: unknown subcommand '\\\\x1B\[2J'" $'\x1b[2J'
+checks=$((checks + 1))
+grep -q $'\x1b' "$tmp/err" && fail "an escape byte of an argument reached stderr"
+expect 2 "The following argument was not expected: \\\\x1B" render "$tmp/scene.json" -o "$tmp/strict.exr" $'\x1b'
+[ -e "$tmp/strict.exr" ] && fail "a rejected command wrote $tmp/strict.exr"
 
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)

@@ -23,8 +23,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // same through the slope budget's resolved_slope_variance of the deterministic amplitudes
 // |h| = √(cell variance) read exactly (direct summation: M = k kᵀ off the Nyquist lines).
 struct LatticeSums {
-  WindSlopeVariance direct;  // the plain sum here
-  WindSlopeVariance budget;  // resolved_slope_variance
+  SlopeVariance direct;  // the plain sum here
+  SlopeVariance budget;  // resolved_slope_variance
 };
 LatticeSums lattice_sums(const Spectrum& s, const Pattern& p) {
   const int n = p.resolution;
@@ -68,7 +68,7 @@ TEST_CASE("band_slope_variance equals the lattice sum of a smooth spectrum to 1e
   in.phillips_suppression = 0.1;
   in.wind_direction = 0.6;
   const Spectrum s = make_spectrum(in);
-  const WindSlopeVariance q = band_slope_variance(s, 0.0, kInfinity);
+  const SlopeVariance q = band_slope_variance(s, 0.0, kInfinity);
   REQUIRE(q.upwind > 0.0);
   REQUIRE(q.crosswind > 0.0);
   CHECK(q.upwind > 2.0 * q.crosswind);  // cos² spreading: mostly along the wind
@@ -95,7 +95,7 @@ TEST_CASE("band_slope_variance of a sharp band: the lattice sum converges to it 
   in.wind_direction = -1.1;
   const Spectrum s = make_spectrum(in);
   const double k_lo = s.peak_wavenumber, k_hi = 6.0 * s.peak_wavenumber;
-  const WindSlopeVariance q = band_slope_variance(s, k_lo, k_hi);
+  const SlopeVariance q = band_slope_variance(s, k_lo, k_hi);
   double previous = kInfinity;
   for (const int per_peak : {8, 16, 32, 64}) {
     CAPTURE(per_peak);
@@ -127,7 +127,7 @@ TEST_CASE("a random realization's slope variance matches band_slope_variance wit
   in.phillips_suppression = 0.1;
   in.wind_direction = 0.6;
   const Spectrum s = make_spectrum(in);
-  const WindSlopeVariance q = band_slope_variance(s, 0.0, kInfinity);
+  const SlopeVariance q = band_slope_variance(s, 0.0, kInfinity);
   const double dk = s.peak_wavenumber / 6.0;  // the lattice sum within 5e-7 of the integral
   const int n = 1024;
   const Pattern p{3, 2.0 * std::numbers::pi / dk, n, Band{}};
@@ -154,7 +154,7 @@ TEST_CASE("a random realization's slope variance matches band_slope_variance wit
     CAPTURE(z);
     CHECK(std::fabs(z) < 5.0);
     // The budget's own account of the same modes agrees with this sum.
-    const WindSlopeVariance budget = resolved_slope_variance(
+    const SlopeVariance budget = resolved_slope_variance(
         r, h, s.wind_direction, Interpolation::direct, SlopeReading::derivative_of_height);
     CHECK(relative(budget.upwind, drawn) < 1e-12);
   }

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/quadrature.h"
 #include "shading/ocean_lighting.h"
 #include "shading/tone_mapping.h"
-#include "spectrum/quadrature.h"
 
 using namespace oceanref;
 
@@ -31,7 +31,7 @@ double hemisphere_albedo(const Vec3& view, SlopeVariance s, FresnelForm fresnel)
   for (double& c : e1) c /= l;
   const Vec3 e2{mirror[1] * e1[2] - mirror[2] * e1[1], mirror[2] * e1[0] - mirror[0] * e1[2],
                 mirror[0] * e1[1] - mirror[1] * e1[0]};
-  const double sigma = std::sqrt(std::fmax(s.x, s.y));
+  const double sigma = std::sqrt(std::fmax(s.upwind, s.crosswind));
   std::vector<double> radii{0.0};
   for (double r = sigma; r < kPi; r *= 2.0) radii.push_back(r);
   radii.push_back(kPi);

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
 
 using namespace oceanref;
 

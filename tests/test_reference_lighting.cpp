@@ -2,7 +2,7 @@
 // computations: the reflected sky as an integral over light directions of the point BRDF (not
 // over slopes), the mean Fresnel and Smith's visible area by brute force in axis-aligned slope
 // coordinates, the sun disk in polar coordinates, all with the scalar adaptive integrator of
-// spectrum/quadrature.h at a far tighter tolerance. Then the contract itself: tightening the
+// core/quadrature.h at a far tighter tolerance. Then the contract itself: tightening the
 // tolerance 100× moves no value by more than its error estimate.
 #include <doctest/doctest.h>
 
@@ -12,18 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "core/quadrature.h"
+#include "core/vec3.h"
 #include "shading/ocean_lighting.h"
 #include "shading/reference_lighting.h"
-#include "spectrum/quadrature.h"
 
 using namespace oceanref;
 
 namespace {
 constexpr double kPi = std::numbers::pi;
 
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 Vec3 in_frame(const SurfaceFrame& f, double x, double n, double y) {
   Vec3 v{};
   for (std::size_t k = 0; k < 3; ++k)
@@ -80,7 +78,7 @@ double sky_over_directions(const Vec3& view, const SurfaceFrame& f, SlopeVarianc
   const double theta_m = std::acos(std::fmin(1.0, dot(mirror, f.normal)));
   const double theta_s =
       std::acos(std::fmax(-1.0, std::fmin(1.0, dot(sky.sun_direction, f.normal))));
-  const double finest = 0.1 * std::sqrt(std::fmin(s.x, s.y));
+  const double finest = 0.1 * std::sqrt(std::fmin(s.upwind, s.crosswind));
   const std::vector<double> phis = sorted_inside(
       0.0, 2.0 * kPi, around({azimuth(f, mirror), azimuth(f, sky.sun_direction)}, finest));
   const std::vector<double> thetas =
@@ -105,8 +103,8 @@ std::array<double, 2> fresnel_by_slopes(const Vec3& view, const SurfaceFrame& f,
   const double vx = dot(view, f.tangent_x);
   const double vy = dot(view, f.tangent_y);
   const double vn = dot(view, f.normal);
-  const double hx = 7.0 * std::sqrt(s.x);
-  const double hy = 7.0 * std::sqrt(s.y);
+  const double hx = 7.0 * std::sqrt(s.upwind);
+  const double hy = 7.0 * std::sqrt(s.crosswind);
   std::array<double, 2> r{};
   for (int channel = 0; channel < 2; ++channel) {
     r[static_cast<std::size_t>(channel)] =
@@ -148,7 +146,7 @@ double sun_by_polar(const Vec3& sun, double radius, const Vec3& view, const Surf
   double psi_m = std::atan2(dot(mirror, w), dot(mirror, u));
   if (psi_m < 0.0) psi_m += 2.0 * kPi;
   // The lobe is 2 v_n σ wide across the plane of incidence: a thin arc at grazing view.
-  const double finest = 0.1 * vn * std::sqrt(std::fmin(s.x, s.y));
+  const double finest = 0.1 * vn * std::sqrt(std::fmin(s.upwind, s.crosswind));
   const std::vector<double> rhos = sorted_inside(0.0, radius, around({rho_m}, finest));
   // A thin arc through the disk's centre crosses each circle ρ = const twice: at ψ_m and
   // ψ_m ± π. (An arc that misses the centre crosses elsewhere; there these breakpoints miss it
@@ -216,9 +214,9 @@ double sun_by_gnomonic_strips(const Vec3& sun, double radius, const Vec3& view,
     py -= (-j[1][0] * z[0] + j[0][0] * z[1]) / det;
   }
   // Precision of the Gaussian in (x, y): M = Jᵀ diag(1/σ_x², 1/σ_y²) J; its principal angle.
-  const double m11 = j[0][0] * j[0][0] / s.x + j[1][0] * j[1][0] / s.y;
-  const double m12 = j[0][0] * j[0][1] / s.x + j[1][0] * j[1][1] / s.y;
-  const double m22 = j[0][1] * j[0][1] / s.x + j[1][1] * j[1][1] / s.y;
+  const double m11 = j[0][0] * j[0][0] / s.upwind + j[1][0] * j[1][0] / s.crosswind;
+  const double m12 = j[0][0] * j[0][1] / s.upwind + j[1][0] * j[1][1] / s.crosswind;
+  const double m22 = j[0][1] * j[0][1] / s.upwind + j[1][1] * j[1][1] / s.crosswind;
   const double angle = 0.5 * std::atan2(2.0 * m12, m11 - m22);  // the largest eigenvalue's axis
   const double ca = std::cos(angle), sa = std::sin(angle);
   const double across = m11 * ca * ca + 2.0 * m12 * ca * sa + m22 * sa * sa;
@@ -264,7 +262,7 @@ struct Case {
 std::string describe(const Case& c) {
   return "view (" + std::to_string(c.view[0]) + ", " + std::to_string(c.view[1]) + ", " +
          std::to_string(c.view[2]) + ") normal_y " + std::to_string(c.normal[1]) + " sigma2 " +
-         std::to_string(c.s.x) + "," + std::to_string(c.s.y) + " sun " +
+         std::to_string(c.s.upwind) + "," + std::to_string(c.s.crosswind) + " sun " +
          std::to_string(c.sun_zenith_deg);
 }
 Vec3 unit(double x, double y, double z) {
@@ -374,7 +372,7 @@ TEST_CASE("reference sun disk: the thin arc of a grazing view on a near-mirror s
     CAPTURE(arc.d_elevation);
     CAPTURE(arc.d_azimuth);
     CAPTURE(arc.normal[0]);
-    CAPTURE(arc.s.y);
+    CAPTURE(arc.s.crosswind);
     const SurfaceFrame f = wind_frame(arc.normal, 0.4);
     // The specular direction m, then V = 2(m·N)N − m.
     const double e = elevation + arc.d_elevation * kSunAngularRadius;
@@ -439,7 +437,7 @@ TEST_CASE("reflected sky at tight tolerances: the cases where the map found esti
   const Sky sky = make_sky(2.5, 30 * deg, 90 * deg);
   for (const Tight& c : {Tight{unit(0.0, 0.01, -0.99995), unit(0, 1, 0), {1e-4, 1e-4}},
                          Tight{unit(0.976338, -0.200612, 0.0807448), tilted, {1.0, 1.0}}}) {
-    CAPTURE(c.s.x);
+    CAPTURE(c.s.upwind);
     const SurfaceFrame f = wind_frame(c.normal, 20 * deg);
     const RgbEstimate loose = reflected_sky_reference(c.view, f, c.s, sky, {}, 1e-9, {});
     const RgbEstimate tight = reflected_sky_reference(c.view, f, c.s, sky, {}, 1e-11, {});

@@ -49,7 +49,7 @@ TEST_CASE("a flat mirror sea reflects the Preetham sky exactly; depth and horizo
   }
   s->job.shading.sun = false;
   s->job.shading.whitecaps = false;
-  const WindSlopeVariance smooth{1e-10, 1e-10};
+  const SlopeVariance smooth{1e-10, 1e-10};
   const RenderedImage image = render(s->job, smooth);
   const Camera& cam = s->job.camera;
   const Vec3 e_sky = sky_irradiance(s->job.sky).rgb;
@@ -156,7 +156,7 @@ TEST_CASE("every viewing case renders an image within its energy bounds") {
 TEST_CASE("render determinism: identical pixels for 1, 2, 3 and 8 threads and across runs") {
   const Scene scene = small_scene(R"({"position": [0, 6, 0], "look_at": [0, 1, 50]})");
   auto reference = prepare(scene, 1);
-  const WindSlopeVariance u = unresolved_slope_variance(reference->job, scene.waves);
+  const SlopeVariance u = unresolved_slope_variance(reference->job, scene.waves);
   const RenderedImage a = render(reference->job, u);
   for (const int threads : {1, 2, 3, 8}) {
     auto s = prepare(scene, threads);
@@ -174,7 +174,7 @@ TEST_CASE(
   s->job.shading.tolerance = 1e-6;
   s->job.camera.width = 20;  // the reference costs ~1 ms per sample: keep the image small
   s->job.camera.height = 11;
-  const WindSlopeVariance unresolved = unresolved_slope_variance(s->job, s->scene.waves);
+  const SlopeVariance unresolved = unresolved_slope_variance(s->job, s->scene.waves);
   const RenderedImage reference = render(s->job, unresolved);
   CHECK(reference.unconverged_samples == 0);
   CHECK(reference.integrand_evaluations > 0);

@@ -279,7 +279,7 @@ class Pipeline {
 
  private:
   std::map<std::string, Ocean> oceans_;
-  std::map<std::string, WindSlopeVariance> unresolved_;
+  std::map<std::string, SlopeVariance> unresolved_;
   std::map<std::string, Outputs> results_;
 };
 

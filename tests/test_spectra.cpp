@@ -4,10 +4,10 @@
 
 #include <cmath>
 
+#include "core/quadrature.h"
 #include "spectrum/frequency_spectra.h"
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
-#include "spectrum/quadrature.h"
 #include "spectrum/wavenumber_spectra.h"
 
 using namespace oceanref;

@@ -91,6 +91,36 @@ TEST_CASE("cos-2s normalization: closed form, s = 0 uniform, no overflow for lar
   }
 }
 
+TEST_CASE("cos-2s: exactly 0 opposite the wind, accurate behind it, continuous at |θ| = π/2") {
+  // atan2 gives fl(π) for a wavevector exactly opposite the wind; |cos(θ/2)| there must be the
+  // true 0, not cos(fl(π)/2) = 6.1e-17 (which made D = Q·(6e-17)^{2s}, ~5e-5·Q for s = 0.13).
+  CHECK(half_angle_cosine(kPi) == 0.0);
+  CHECK(half_angle_cosine(-kPi) == 0.0);
+  CHECK(half_angle_cosine(3.0 * kPi) == 0.0);  // wrapped first
+  for (const double s : {0.13, 1.0, 20.0}) CHECK(cos_2s_spreading(kPi, s) == 0.0);
+  // Behind the wind: |cos(θ/2)| = sin(d/2) with d = fl(π) − |θ| exact; sin x = x to rounding
+  // for x < 1e-8 (x³/6 is below half an ulp of x).
+  for (const double d : {1e-9, 1e-12, 1e-15, 4.440892098500626e-16}) {
+    const double theta = kPi - d;
+    const double exact_gap = kPi - theta;  // Sterbenz: exact
+    CHECK(half_angle_cosine(theta) == doctest::Approx(0.5 * exact_gap).epsilon(1e-15));
+    CHECK(half_angle_cosine(-theta) == half_angle_cosine(theta));
+  }
+  // Against the libm form where it has no cancellation, and continuity at the branch point.
+  for (const double theta : {0.3, 1.0, 1.5707963267948966, 1.6, 2.5, 3.1}) {
+    CHECK(half_angle_cosine(theta) ==
+          doctest::Approx(std::fabs(std::cos(0.5 * theta))).epsilon(1e-15));
+  }
+  // A grid's wavevector straight upwind carries no energy under a cos-2s spread with the wind
+  // along x (the golden scenes' wind); the one beside it does.
+  SpectrumSettings in;
+  in.spreading = SpreadingModel::mitsuyasu;
+  const Spectrum s = make_spectrum(in);
+  CHECK(wavevector_spectrum(s, -0.05, 0.0) == 0.0);
+  CHECK(wavevector_spectrum(s, -0.05, 0.001) > 0.0);
+  CHECK(wavevector_spectrum(s, 0.05, 0.0) > 0.0);
+}
+
 TEST_CASE("spread laws: published constants and branch points") {
   // Mitsuyasu s is continuous at ω_p (both branches give s_p).
   const double sp = mitsuyasu_peak_spread(1.0, 10.0, g);

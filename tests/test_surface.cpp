@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/math.h"
+#include "core/quadrature.h"
 #include "raster/renderer.h"
 #include "scene/scene.h"
-#include "spectrum/quadrature.h"
 #include "waves/slope_budget.h"
 
 using namespace oceanref;
@@ -174,8 +174,8 @@ TEST_CASE(
       const double s = w.cx * g.d_dx + w.cz * g.d_dz;
       return s * s;
     });
-    const WindSlopeVariance formula = resolved_slope_variance(
-        c.low, h, ocean.spectrum.wind_direction, mode, SlopeReading::derivative_of_height);
+    const SlopeVariance formula = resolved_slope_variance(c.low, h, ocean.spectrum.wind_direction,
+                                                          mode, SlopeReading::derivative_of_height);
     // Both are exact: they differ by rounding only.
     CHECK(formula.upwind == doctest::Approx(up).epsilon(1e-10));
     CHECK(formula.crosswind == doctest::Approx(across).epsilon(1e-10));
@@ -189,12 +189,12 @@ TEST_CASE(
       const double s = w.ux * slope(Field::slope_x, x, z) + w.uz * slope(Field::slope_z, x, z);
       return s * s;
     });
-    const WindSlopeVariance formula_h = resolved_slope_variance(
+    const SlopeVariance formula_h = resolved_slope_variance(
         c.high, spectrum_at_time(c.high, scene.time), ocean.spectrum.wind_direction, mode,
         SlopeReading::interpolated_slopes);
     CHECK(formula_h.upwind == doctest::Approx(up_h).epsilon(1e-10));
     // And the loss is real: interpolation keeps clearly less than the exact reading.
-    const WindSlopeVariance exact =
+    const SlopeVariance exact =
         resolved_slope_variance(c.low, h, ocean.spectrum.wind_direction, Interpolation::direct,
                                 SlopeReading::derivative_of_height);
     CHECK(formula.upwind < 0.95 * exact.upwind);
@@ -276,7 +276,7 @@ TEST_CASE("default scene: resolved slope variance + the BRDF's sigma^2 = the spe
     s.shading.normals = normals;
     const RenderJob job = scene_render_job(s, ocean, 2);
     const SlopeVarianceBudget b = slope_budget(job, s.waves);
-    const WindSlopeVariance sigma2 = unresolved_slope_variance(job, s.waves);
+    const SlopeVariance sigma2 = unresolved_slope_variance(job, s.waves);
     CHECK_FALSE(b.clamped);
     const std::vector<CascadeFields> fields = synthesize_ocean(ocean, job.time, 2);
     const WindAxes w = wind_axes(ocean.spectrum.wind_direction);
@@ -502,7 +502,7 @@ TEST_CASE("shading.normals: scene key, validation, and it changes the image") {
   j["shading"]["normals"] = 1;
   CHECK_THROWS_AS(parse_scene(j), SceneError);
   std::vector<Vec3> images[2];
-  WindSlopeVariance sigma2[2];
+  SlopeVariance sigma2[2];
   for (int k = 0; k < 2; ++k) {
     json scene_json = base;
     scene_json["shading"]["normals"] = k == 0 ? "surface" : "high_resolution";

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Checks a built oceanref against the determinism contract at the machine-code level:
-#   1. the program and the library import no transcendental from libm (they must call the
+#   1. the program and the libraries import no transcendental from libm (they must call the
 #      portable functions of src/core/math.h; exact operations such as sqrt, floor or fmod are
 #      allowed, they are correctly rounded everywhere);
-#   2. no fused multiply-add instruction appears in the library or the program (a compiler may
+#   2. no fused multiply-add instruction appears in the libraries or the program (a compiler may
 #      emit them for -march=x86-64-v3/native, or on aarch64, if contraction were allowed).
 #
 #   tools/check_binary.sh BUILD_DIR [OBJDUMP]      (OBJDUMP: e.g. aarch64-linux-gnu-objdump)
@@ -13,8 +13,12 @@ build_dir=${1:?usage: tools/check_binary.sh BUILD_DIR [OBJDUMP]}
 objdump_tool=${2:-objdump}
 nm_tool=${objdump_tool%objdump}nm
 program="$build_dir/src/oceanref"
-library="$build_dir/src/liboceanref_lib.a"
-for f in "$program" "$library"; do
+# The libraries: one per folder of src/ (src/CMakeLists.txt).
+libraries=()
+for layer in core spectrum waves sky shading raster scene io conformance; do
+  libraries+=("$build_dir/src/liboceanref_$layer.a")
+done
+for f in "$program" "${libraries[@]}"; do
   [ -f "$f" ] || { echo "check_binary: $f not found (build first)" >&2; exit 2; }
 done
 
@@ -27,17 +31,19 @@ if [ -n "$imports" ]; then
   echo "FAIL: $program imports libm transcendentals: $(echo $imports)" >&2
   failures=$((failures + 1))
 fi
-undefined=$("$nm_tool" --undefined-only "$library" 2>/dev/null | awk '{print $NF}' | sort -u |
-  grep -E "$transcendental" || true)
-if [ -n "$undefined" ]; then
-  echo "FAIL: $library calls libm transcendentals: $(echo $undefined)" >&2
-  failures=$((failures + 1))
-fi
+for library in "${libraries[@]}"; do
+  undefined=$("$nm_tool" --undefined-only "$library" 2>/dev/null | awk '{print $NF}' | sort -u |
+    grep -E "$transcendental" || true)
+  if [ -n "$undefined" ]; then
+    echo "FAIL: $library calls libm transcendentals: $(echo $undefined)" >&2
+    failures=$((failures + 1))
+  fi
+done
 
 # Fused multiply-add mnemonics: x86 FMA3/FMA4 (vfmadd…, vfmsub…, vfnmadd…, vfnmsub…,
 # vfmaddsub…, vfmsubadd…), aarch64 scalar and vector (fmadd, fmsub, fnmadd, fnmsub, fmla, fmls).
 fma='\s(vf(n)?m(add|sub)[a-z0-9]*|vfmaddsub[a-z0-9]*|vfmsubadd[a-z0-9]*|fn?m(add|sub)|fml[as])\s'
-for f in "$library" "$program"; do
+for f in "${libraries[@]}" "$program"; do
   count=$("$objdump_tool" -d --no-show-raw-insn "$f" 2>/dev/null | grep -cE "$fma" || true)
   if [ "$count" -ne 0 ]; then
     echo "FAIL: $f contains $count fused multiply-add instructions, e.g.:" >&2

@@ -42,8 +42,9 @@ bin=$build/src/oceanref
 # deep and finite-depth dispersion, band partitioning and multi-resolution. Not
 # gamper_inside_volume_sunset: its wind lies along a grid axis, so grid entries lie exactly
 # upwind, where the cos-2s spreading with a small spread s has a notch of infinite slope
-# (|cos(θ/2)|^{2s}); oceanref evaluates cos(π/2) as 6.1e-17 there, float32 as 4.4e-8, and
-# the difference reaches 9% of the h0 RMS (docs/BACKENDS.md, "Ill-conditioned entries").
+# (|cos(θ/2)|^{2s}); oceanref gives exactly 0 there, the float32 example backend's cos(θ/2) of
+# a float angle 4.4e-8, and the difference reaches 9% of the h0 RMS (docs/BACKENDS.md,
+# "Ill-conditioned entries").
 # Times: 0, 1 and 10 s (beyond 10 s the float phase omega*t loses digits: reference/ACCURACY.md).
 # tests/test_conformance.cpp checks the profiles on a scene and a time not among these.
 scenes=(reference/scenes/default.json reference/scenes/backend_example.json)

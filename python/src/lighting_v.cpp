@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common.h"
+#include "core/choice.h"
 #include "core/math.h"
 #include "shading/reference_lighting.h"
 #include "sky/preetham.h"
@@ -47,18 +48,8 @@ SlopeVariance slope_variance(const py::handle& value) {
 
 BrdfOptions options_from(const std::string& fresnel, const std::string& erfc) {
   BrdfOptions o;
-  if (fresnel == "schlick") {
-    o.fresnel = FresnelForm::schlick;
-  } else if (fresnel == "unity") {
-    o.fresnel = FresnelForm::unity;
-  } else if (fresnel != "exact") {
-    throw ArgumentError("fresnel", "expected exact, schlick or unity, got '" + fresnel + "'");
-  }
-  if (erfc == "rational") {
-    o.erfc = ErfcForm::rational;
-  } else if (erfc != "exact") {
-    throw ArgumentError("erfc", "expected exact or rational, got '" + erfc + "'");
-  }
+  o.fresnel = parse_choice<ArgumentError>(kFresnelForms, "fresnel", fresnel);
+  o.erfc = parse_choice<ArgumentError>(kErfcForms, "erfc", erfc);
   return o;
 }
 

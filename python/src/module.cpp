@@ -8,6 +8,7 @@
 #include "build_info.h"
 #include "common.h"
 #include "conformance/provenance.h"
+#include "core/direction.h"
 #include "scene/scene.h"
 #include "spectrum/model.h"
 
@@ -28,9 +29,9 @@ std::array<double, 3> unit_vector(const std::string& key, const py::handle& valu
   for (py::ssize_t i = 0; i < 3; ++i) {
     if (!(v[i] - v[i] == 0.0)) throw ArgumentError(key, "expected finite numbers");
   }
-  const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(length > 0.0)) throw ArgumentError(key, "the vector must not be zero");
-  return {v[0] / length, v[1] / length, v[2] / length};
+  const std::optional<std::array<double, 3>> d = unit_direction({v[0], v[1], v[2]});
+  if (!d) throw ArgumentError(key, "the vector must not be zero");
+  return *d;
 }
 
 int resolve_threads(int requested) {

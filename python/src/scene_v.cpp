@@ -28,13 +28,7 @@ PyScene scene_from_file(const std::string& path) {
 }
 
 PyScene scene_from_json(const std::string& text) {
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text, nullptr, true, false);
-  } catch (const nlohmann::json::exception& e) {
-    throw SceneError("(scene JSON)", std::string("not valid JSON: ") + e.what());
-  }
-  return {parse_scene(document)};
+  return {parse_scene(parse_scene_json(text, "(scene JSON)"))};
 }
 
 double scene_time(const Scene& scene, const std::optional<double>& time) {
@@ -130,7 +124,7 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
     const Ocean ocean = realize_ocean(scene.waves, threads);
     RenderJob job = scene_render_job(scene, ocean, threads);
     job.estimate_fast_error = aov;  // as `oceanref render --aov`
-    const WindSlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
+    const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
     image = render(job, unresolved);
   }
   const int w = image.width;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common.h"
+#include "core/choice.h"
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
 
@@ -38,14 +39,7 @@ const char* const kKeywords =
 
 SpectrumSettings settings_from(const std::string& model_name, const py::kwargs& kw) {
   SpectrumSettings s;
-  const auto model = parse_spectrum_model(hyphenated(model_name));
-  if (!model) {
-    throw ArgumentError("model",
-                        "expected one of phillips, pierson-moskowitz, jonswap, tma, donelan, "
-                        "unified; got '" +
-                            model_name + "'");
-  }
-  s.model = *model;
+  s.model = parse_choice<ArgumentError>(kSpectrumModels, "model", hyphenated(model_name));
   for (const auto& item : kw) {  // no structured binding: clang 15 cannot capture one
     const std::string key = py::str(item.first);
     const py::handle value = item.second;
@@ -66,19 +60,9 @@ SpectrumSettings settings_from(const std::string& model_name, const py::kwargs& 
       }
       s.wind_direction = deg * kDegree;
     } else if (key == "spreading") {
-      s.spreading = parse_spreading_model(hyphenated(text()));
-      if (!s.spreading) {
-        throw ArgumentError(key,
-                            "expected one of cos2, cos4, mitsuyasu, hasselmann, mastin, gamper, "
-                            "donelan, donelan-banner, unified; got '" +
-                                text() + "'");
-      }
+      s.spreading = parse_choice<ArgumentError>(kSpreadingModels, key, hyphenated(text()));
     } else if (key == "dispersion") {
-      s.dispersion = parse_dispersion(hyphenated(text()));
-      if (!s.dispersion) {
-        throw ArgumentError(key,
-                            "expected one of deep, finite-depth, capillary; got '" + text() + "'");
-      }
+      s.dispersion = parse_choice<ArgumentError>(kDispersionKinds, key, hyphenated(text()));
     } else if (key == "swell") {
       s.swell = number(key, value);
     } else if (key == "spread_blend") {
@@ -94,21 +78,10 @@ SpectrumSettings settings_from(const std::string& model_name, const py::kwargs& 
     } else if (key == "sigma_high") {
       s.sigma_high = number(key, value);
     } else if (key == "pm_wind") {
-      if (text() == "u10") {
-        s.pm_wind = PiersonMoskowitzWind::u10;
-      } else if (text() == "u19.5") {
-        s.pm_wind = PiersonMoskowitzWind::u19_5;
-      } else {
-        throw ArgumentError(key, "expected u10 or u19.5, got '" + text() + "'");
-      }
+      s.pm_wind = parse_choice<ArgumentError>(kPiersonMoskowitzWinds, key, text());
     } else if (key == "tma_attenuation") {
-      if (hyphenated(text()) == "exact") {
-        s.depth_attenuation = DepthAttenuation::exact;
-      } else if (hyphenated(text()) == "thompson-vincent") {
-        s.depth_attenuation = DepthAttenuation::thompson_vincent;
-      } else {
-        throw ArgumentError(key, "expected exact or thompson-vincent, got '" + text() + "'");
-      }
+      s.depth_attenuation =
+          parse_choice<ArgumentError>(kDepthAttenuations, key, hyphenated(text()));
     } else if (key == "phillips_suppression") {
       s.phillips_suppression = number(key, value);
     } else if (key == "capillary_wavenumber") {

@@ -131,6 +131,11 @@ def test_spreading_integrates_to_one():
         (lambda: oceanref.spectrum("jonswap", 1.0, wind_direction_deg=1000),
          "wind_direction_deg", "[-720, 720]"),
         (lambda: oceanref.moments("jonswap", k_max=0.001), "k_max", "peak wavenumber"),
+        # Choices: the same table and message as scene files and the command line.
+        (lambda: oceanref.spectrum("pierson-moskowitz", 1.0, pm_wind="u20"), "pm_wind",
+         "expected u10 or u19.5; got 'u20'"),
+        (lambda: oceanref.spectrum("jonswap", 1.0, dispersion="shallow"), "dispersion",
+         "expected one of deep, finite-depth, capillary; got 'shallow'"),
     ],
 )
 def test_bad_input_raises_value_error_naming_the_key(call, key, text):

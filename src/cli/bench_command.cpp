@@ -30,17 +30,20 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       "Time one frame of wave synthesis per stage with KissFFT and, in the same run, FFTW "
       "double; report the float-vs-double difference of every field.");
   synthesis->add_option("--cascades", flags->cascades, "number of cascades")
-      ->check(CLI::Range(1, 16))
+      ->check(integer_in(1, 16))
       ->capture_default_str();
   synthesis->add_option("--resolution", flags->resolution, "N_h, a power of two in [4, 4096]")
+      ->check(integer_in(4, 4096, " (a power of two)"))
       ->capture_default_str();
-  synthesis->add_option("--low-resolution", flags->low_resolution,
-                        "N_l for eta and D (default: N_h, no multi-resolution)");
+  synthesis
+      ->add_option("--low-resolution", flags->low_resolution,
+                   "N_l for eta and D (default: N_h, no multi-resolution)")
+      ->check(integer_in(0, 4096, " (a power of two <= --resolution; 0: = --resolution)"));
   synthesis->add_option("--threads", flags->threads, "worker threads")
-      ->check(CLI::Range(1, 1024))
+      ->check(integer_in(1, 1024))
       ->capture_default_str();
   synthesis->add_option("--frames", flags->frames, "timed frames (median reported)")
-      ->check(CLI::Range(1, 100000))
+      ->check(integer_in(1, 100000))
       ->capture_default_str();
   auto lighting_order = std::make_shared<int>(64);
   CLI::App* lighting = bench->add_subcommand(
@@ -49,7 +52,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       "mirror sky lookup) against the exact forms, the printed-vs-physical sun transmittance, "
       "and the convergence of the sky quadrature.");
   lighting->add_option("--order", *lighting_order, "Gauss-Hermite order of the exact terms")
-      ->check(CLI::Range(4, 512))
+      ->check(integer_in(4, 512))
       ->capture_default_str();
   struct MapFlags {
     std::string csv, svg;
@@ -70,7 +73,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   lighting_map->add_option("--svg", map_options->svg,
                            "OUT.svg: error versus time per integral, log-log");
   lighting_map->add_option("--threads", map_options->threads, "worker threads for the truths")
-      ->check(CLI::Range(1, 1024))
+      ->check(integer_in(1, 1024))
       ->capture_default_str();
   lighting_map->add_flag("--quick", map_options->quick,
                          "a tiny sweep, fewer orders and tolerances (a smoke test, not a "
@@ -103,16 +106,16 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       "(resolved + sigma^2 = the spectrum's moment) for every shading.normals and interpolation.");
   render_cmd->add_option("--scene", render_flags->scene, "scene file")->capture_default_str();
   render_cmd->add_option("--threads", render_flags->threads, "worker threads")
-      ->check(CLI::Range(1, 1024))
+      ->check(integer_in(1, 1024))
       ->capture_default_str();
   render_cmd->add_option("--width", render_flags->width, "image width")
-      ->check(CLI::Range(1, 16384))
+      ->check(integer_in(1, 16384))
       ->capture_default_str();
   render_cmd->add_option("--height", render_flags->height, "image height")
-      ->check(CLI::Range(1, 16384))
+      ->check(integer_in(1, 16384))
       ->capture_default_str();
   render_cmd->add_option("--spp", render_flags->spp, "samples per pixel (a square)")
-      ->check(CLI::Range(1, 256))
+      ->check(integer_in(1, 256, " (a square number)"))
       ->capture_default_str();
   auto study_flags = std::make_shared<RenderFlags>();
   CLI::App* study = bench->add_subcommand(
@@ -122,7 +125,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       "interpolation; each against its most exact setting in the same run.");
   study->add_option("--scene", study_flags->scene, "scene file")->capture_default_str();
   study->add_option("--threads", study_flags->threads, "worker threads")
-      ->check(CLI::Range(1, 1024))
+      ->check(integer_in(1, 1024))
       ->capture_default_str();
   struct Float32Flags {
     std::string scene, output, golden, defect = "none", stage = "fields";
@@ -150,7 +153,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       "--golden", float32_flags->golden,
       "also write oceanref's STAGE (as `oceanref fields --stage STAGE`): GOLDEN.exr");
   float32->add_option("--time", float32_flags->time, "time t [s] (default: the scene's)")
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(number_in(0.0, 1e7, " s"));
   float32
       ->add_option(
           "--defect", float32_flags->defect,
@@ -163,7 +166,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
           std::vector<std::string>(std::begin(kFloat32DefectNames), std::end(kFloat32DefectNames))))
       ->capture_default_str();
   float32->add_option("--threads", float32_flags->threads, "worker threads (golden)")
-      ->check(CLI::Range(1, 1024))
+      ->check(integer_in(1, 1024))
       ->capture_default_str();
   return [float32, float32_flags, flags, synthesis, lighting, lighting_order, render_cmd,
           render_flags, study, study_flags, lighting_map, map_options, lighting_pixels,
@@ -238,7 +241,10 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
     if (render_cmd->parsed()) {
       const RenderFlags& r = *render_flags;
       const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(r.spp))));
-      if (axis * axis != r.spp) throw UsageError("--spp", "must be a square number");
+      if (axis * axis != r.spp) {
+        throw UsageError("--spp",
+                         "must be a square number in [1, 256], got " + std::to_string(r.spp));
+      }
       bench_render(out, r.scene, r.threads, r.width, r.height, r.spp);
       bench_interpolation(out, r.scene, r.threads);
       bench_slope_budget(out, r.scene, r.threads);

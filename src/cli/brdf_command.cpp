@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/text.h"
+#include "core/choice.h"
 #include "core/math.h"
 #include "shading/lighting_terms.h"
 
@@ -66,12 +67,15 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tolerance", f->tolerance,
                   "reference: relative tolerance of each integral, in [1e-10, 1e-2]")
+      ->check(number_in(kMinLightingTolerance, kMaxLightingTolerance))
       ->capture_default_str();
   cmd->add_option("--order", f->order,
                   "fast: Gauss-Hermite order per axis for the sky and mean Fresnel, 1-1024")
+      ->check(integer_in(1, kMaxQuadratureOrder))
       ->capture_default_str();
   cmd->add_option("--sun-order", f->sun_order,
                   "fast: Gauss-Legendre order over the sun disk (0: point sun), 0-256")
+      ->check(integer_in(0, 256))
       ->capture_default_str();
   cmd->add_option("--fresnel", f->fresnel, "exact | schlick")->capture_default_str();
   cmd->add_option("--erfc", f->erfc, "exact | rational")->capture_default_str();
@@ -79,41 +83,27 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
     const Vec3 view = parse_unit_vector("--view", f->view);
     const Vec3 sun = parse_unit_vector("--sun", f->sun);
     const Vec3 normal = parse_unit_vector("--normal", f->normal);
-    const std::vector<double> s2 = parse_number_list("--sigma2", f->sigma2);
+    const std::vector<double> s2 = parse_number_list("--sigma2", f->sigma2, "[1e-06, 1] each");
     if (s2.size() != 2 || s2[0] < 1e-6 || s2[0] > 1.0 || s2[1] < 1e-6 || s2[1] > 1.0) {
-      throw UsageError("--sigma2",
-                       "expected sx,sy with each in [1e-6, 1], got '" + f->sigma2 + "'");
+      throw UsageError("--sigma2", "expected sx,sy with each in [1e-6, 1], got '" +
+                                       escape_value(f->sigma2) + "'");
     }
-    const double wind = parse_number("--wind-deg", f->wind);
-    if (std::fabs(wind) > 720.0) throw UsageError("--wind-deg", "must be in [-720, 720]");
-    const double turbidity = parse_number("--turbidity", f->turbidity);
-    if (turbidity < kMinTurbidity || turbidity > kMaxTurbidity) {
-      throw UsageError("--turbidity", "must be in [2, 10], got " + f->turbidity);
-    }
-    const std::vector<double> sea = parse_number_list("--sea-colour", f->sea);
+    const double wind = parse_number_in("--wind-deg", f->wind, -720.0, 720.0, " degrees");
+    const double turbidity =
+        parse_number_in("--turbidity", f->turbidity, kMinTurbidity, kMaxTurbidity);
+    const std::vector<double> sea = parse_number_list("--sea-colour", f->sea, "[0, 1] each");
     if (sea.size() != 3 || sea[0] < 0 || sea[1] < 0 || sea[2] < 0 || sea[0] > 1 || sea[1] > 1 ||
         sea[2] > 1) {
-      throw UsageError("--sea-colour", "expected r,g,b each in [0, 1]");
+      throw UsageError("--sea-colour",
+                       "expected r,g,b each in [0, 1], got '" + escape_value(f->sea) + "'");
     }
     BrdfOptions options;
-    if (f->fresnel == "schlick") {
-      options.fresnel = FresnelForm::schlick;
-    } else if (f->fresnel != "exact") {
-      throw UsageError("--fresnel", "expected exact or schlick, got '" + f->fresnel + "'");
-    }
-    if (f->erfc == "rational") {
-      options.erfc = ErfcForm::rational;
-    } else if (f->erfc != "exact") {
-      throw UsageError("--erfc", "expected exact or rational, got '" + f->erfc + "'");
-    }
+    options.fresnel = parse_choice<UsageError>(kShadingFresnelForms, "--fresnel", f->fresnel);
+    options.erfc = parse_choice<UsageError>(kErfcForms, "--erfc", f->erfc);
     ShadingSettings shading;
     shading.brdf = options;
     shading.sea_colour = {sea[0], sea[1], sea[2]};
-    if (f->accuracy == "fast") {
-      shading.accuracy = LightingAccuracy::fast;
-    } else if (f->accuracy != "reference") {
-      throw UsageError("--accuracy", "expected reference or fast, got '" + f->accuracy + "'");
-    }
+    shading.accuracy = parse_choice<UsageError>(kLightingAccuracies, "--accuracy", f->accuracy);
     const bool fast = shading.accuracy == LightingAccuracy::fast;
     if (fast && cmd->count("--tolerance") > 0) {
       throw UsageError("--tolerance", "applies to --accuracy reference only");

@@ -93,25 +93,25 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
          "--list FILE or --list FILE)")
       ->expected(0, -1);
   auto* abs = cmd->add_option("--abs", f->threshold.absolute, "A: absolute tolerance (0)")
-                  ->check(CLI::Range(0.0, 1e30));
+                  ->check(number_in(0.0, 1e30));
   auto* rel = cmd->add_option("--rel", f->threshold.relative, "R: relative tolerance (0)")
-                  ->check(CLI::Range(0.0, 1e30));
+                  ->check(number_in(0.0, 1e30));
   auto* floor = cmd->add_option("--floor", f->threshold.floor,
                                 "F: the relative error's floor in units of RMS(g) (0; with "
                                 "--suggest: 1)")
-                    ->check(CLI::Range(0.0, 1e30));
+                    ->check(number_in(0.0, 1e30));
   auto* ulp = cmd->add_option("--ulp", f->threshold.ulp, "U: values within U float32 ULPs pass (0)")
-                  ->check(CLI::Range(0LL, 4294967296LL));
+                  ->check(integer_in(0LL, 4294967296LL));
   auto* share = cmd->add_option("--max-fail-share", f->threshold.allowed_share,
                                 "S: allowed share of failing values per channel, in [0, 1] (0)")
-                    ->check(CLI::Range(0.0, 1.0));
+                    ->check(number_in(0.0, 1.0));
   auto* min_ssim =
       cmd->add_option("--min-ssim", f->min_ssim,
                       "fail a part with R, G, B (or Y) whose SSIM is below this, in [-1, 1] "
                       "(SSIM: Wang et al. 2004 on the luminance tone-mapped by the golden's "
                       "log-average, 11x11 Gaussian window sigma 1.5, K1 0.01, K2 0.03, L 1; always "
                       "reported for such parts)")
-          ->check(CLI::Range(-1.0, 1.0));
+          ->check(number_in(-1.0, 1.0));
   cmd->add_option("--profile", f->profile,
                   "FILE: per-channel thresholds (reference/profiles/*.json) instead of "
                   "--abs/--rel/--floor/--ulp/--max-fail-share")
@@ -141,7 +141,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
   cmd->add_option("--list", f->list,
                   "FILE (--suggest): one run per line, CANDIDATE or CANDIDATE GOLDEN");
   cmd->add_option("--safety", f->safety, "--suggest: safety factor (4)")
-      ->check(CLI::Range(1.0, 1e6));
+      ->check(number_in(1.0, 1e6));
   cmd->add_option("-o,--output", f->output, "--suggest: write the profile JSON to FILE");
   cmd->add_option("--name", f->name, "--suggest: the profile's name");
   return [f, floor, min_ssim](std::ostream& out) {
@@ -267,7 +267,8 @@ std::function<void(std::ostream&)> add_golden_command(CLI::App& app) {
   CLI::App* update = cmd->add_subcommand("update", "re-render and rewrite the golden files");
   for (CLI::App* sub : {verify, update}) {
     sub->add_option("--root", f->root, "the reference folder")->capture_default_str();
-    sub->add_option("--threads", f->threads, "worker threads (default: all cores)");
+    sub->add_option("--threads", f->threads, "worker threads (default: all cores)")
+        ->check(integer_in(0, 1024, " (0: all cores)"));
     sub->add_option("--only", f->only, "NAME,NAME,…: just these scenes of the manifest");
   }
   update->add_flag("--yes", f->yes, "required: really rewrite reference/golden");

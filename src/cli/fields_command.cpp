@@ -75,7 +75,8 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
                              "sum rows combined as shading.normals)");
   output->excludes(at);
   cmd->add_option("--threads", flags->threads,
-                  "worker threads (default: all cores); the output is identical for any count");
+                  "worker threads (default: all cores); the output is identical for any count")
+      ->check(integer_in(0, 1024, " (0: all cores)"));
   return [flags](std::ostream& out) {
     if (flags->output.empty() && flags->at.empty()) {
       throw UsageError("fields", "give -o OUT.exr or --at x,z");
@@ -91,10 +92,7 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
     const int threads = resolve_threads(flags->threads);
     Scene scene = load_scene(flags->scene);
     if (!flags->time.empty()) {
-      scene.time = parse_number("--time", flags->time);
-      if (std::fabs(scene.time) > 1e7) {
-        throw UsageError("--time", "must be in [-1e7, 1e7] s, got " + flags->time);
-      }
+      scene.time = parse_number_in("--time", flags->time, -1e7, 1e7, " s");
     }
     progress("oceanref fields", "realizing the spectrum");
     const Ocean ocean = realize_ocean(scene.waves, threads);
@@ -102,10 +100,12 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
       write_stage_exr(flags->output, scene, ocean, stage, threads);
       return;
     }
-    const std::vector<double> point = parse_number_list("--at", flags->at);
-    if (point.size() != 2) throw UsageError("--at", "expected x,z, got '" + flags->at + "'");
+    const std::vector<double> point = parse_number_list("--at", flags->at, "[-1e9, 1e9] m each");
+    if (point.size() != 2)
+      throw UsageError("--at", "expected x,z, got '" + escape_value(flags->at) + "'");
     if (std::fabs(point[0]) > 1e9 || std::fabs(point[1]) > 1e9) {
-      throw UsageError("--at", "coordinates must be in [-1e9, 1e9] m");
+      throw UsageError(
+          "--at", "coordinates must be in [-1e9, 1e9] m, got '" + escape_value(flags->at) + "'");
     }
     write_point(out, scene, ocean, point[0], point[1], threads);
   };

@@ -47,10 +47,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const auto named = [&](const CLI::App* sub) { return sub->check_name(argv[1]); };
     if (argc > 1 && argv[1][0] != '-' && app.get_subcommands(named).empty()) {
-      std::cerr << "oceanref: unknown subcommand '" << argv[1] << "' (see oceanref --help)\n";
+      std::cerr << "oceanref: unknown subcommand '" << oceanref::escape_value(argv[1])
+                << "' (see oceanref --help)\n";
       return 2;
     }
-    std::cerr << "oceanref: " << e.what() << " (see oceanref --help)\n";
+    // CLI11 quotes the arguments as typed: escaped, so that raw bytes never reach the terminal.
+    std::cerr << "oceanref: " << oceanref::escape_value(e.what(), 1000)
+              << " (see oceanref --help)\n";
     return 2;
   }
   try {

@@ -57,8 +57,10 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   cmd->add_option("SCENE", f->scene, "scene file (JSON)")->required();
   cmd->add_option("-o,--output", f->output, "OUT.exr")->required();
   cmd->add_option("--png", f->png, "PREVIEW.png: Reinhard 2002 tone mapping, sRGB transfer");
-  cmd->add_option("--threads", f->threads, "worker threads (default: all cores)");
-  cmd->add_option("--spp", f->spp, "samples per pixel, a square number (overrides the scene)");
+  cmd->add_option("--threads", f->threads, "worker threads (default: all cores)")
+      ->check(integer_in(0, 1024, " (0: all cores)"));
+  cmd->add_option("--spp", f->spp, "samples per pixel, a square number (overrides the scene)")
+      ->check(integer_in(1, 256, " (a square number)"));
   cmd->add_flag(
       "--aov", f->aov,
       "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
@@ -111,7 +113,8 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
       "estimate); then the pixel.");
   cmd->add_option("SCENE", f->scene, "scene file (JSON)")->required();
   cmd->add_option("--pixel", f->pixel, "x,y (column, row from the top-left)")->required();
-  cmd->add_option("--threads", f->threads, "worker threads (default: all cores)");
+  cmd->add_option("--threads", f->threads, "worker threads (default: all cores)")
+      ->check(integer_in(0, 1024, " (0: all cores)"));
   return [f](std::ostream& out) {
     const int threads = resolve_threads(f->threads);
     const std::vector<double> xy = parse_number_list("--pixel", f->pixel);
@@ -123,7 +126,7 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
       throw UsageError("--pixel", "expected integer x,y inside the " +
                                       std::to_string(p->scene.image.width) + "x" +
                                       std::to_string(p->scene.image.height) + " image, got '" +
-                                      f->pixel + "'");
+                                      escape_value(f->pixel) + "'");
     }
     const std::vector<SampleProbe> samples =
         probe_pixel(p->job, p->unresolved, static_cast<int>(xy[0]), static_cast<int>(xy[1]));

@@ -112,7 +112,8 @@ std::function<void(std::ostream&)> add_sky_command(CLI::App& app) {
       "--irradiance", flags->irradiance,
       "CSV E_Y,E_X,E_Z,R,G,B,relative_error: horizontal irradiance of the sky dome (lx for E_Y), "
       "sun excluded, by adaptive quadrature");
-  auto* size = cmd->add_option("--size", flags->size, "hemisphere image size N (with -o)");
+  auto* size = cmd->add_option("--size", flags->size, "hemisphere image size N (with -o)")
+                   ->check(integer_in(1, 8192));
   auto* output = cmd->add_option("-o,--output", flags->output, "sky.exr (with --size)");
   cmd->add_flag("--printed-transmittance", flags->printed,
                 "Rayleigh and aerosol transmittance as printed in Preetham's appendix "
@@ -124,18 +125,12 @@ std::function<void(std::ostream&)> add_sky_command(CLI::App& app) {
   irradiance->excludes(size);
   return [flags](std::ostream& out) {
     check_output_paths({{"--output", flags->output}}, {});
-    const double zenith = parse_number("--sun-zenith-deg", flags->zenith);
-    if (zenith < 0.0 || zenith > 180.0) {
-      throw UsageError("--sun-zenith-deg", "must be in [0, 180], got " + flags->zenith);
-    }
-    const double azimuth = parse_number("--sun-azimuth-deg", flags->azimuth);
-    if (std::fabs(azimuth) > 720.0) {
-      throw UsageError("--sun-azimuth-deg", "must be in [-720, 720], got " + flags->azimuth);
-    }
-    const double turbidity = parse_number("--turbidity", flags->turbidity);
-    if (turbidity < kMinTurbidity || turbidity > kMaxTurbidity) {
-      throw UsageError("--turbidity", "must be in [2, 10], got " + flags->turbidity);
-    }
+    const double zenith =
+        parse_number_in("--sun-zenith-deg", flags->zenith, 0.0, 180.0, " degrees");
+    const double azimuth =
+        parse_number_in("--sun-azimuth-deg", flags->azimuth, -720.0, 720.0, " degrees");
+    const double turbidity =
+        parse_number_in("--turbidity", flags->turbidity, kMinTurbidity, kMaxTurbidity);
     const Sky sky = make_sky(turbidity, zenith * kDegree, azimuth * kDegree);
     const TransmittanceForm form =
         flags->printed ? TransmittanceForm::printed : TransmittanceForm::physical;

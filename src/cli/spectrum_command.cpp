@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/text.h"
+#include "core/choice.h"
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
 
@@ -48,70 +49,39 @@ std::string flag_for(const std::string& key) {
   return it == flags.end() ? key : it->second;
 }
 
-std::optional<double> optional_number(const std::string& flag, const std::string& text) {
+std::optional<double> optional_number(const std::string& flag, const std::string& text,
+                                      const std::string& range) {
   if (text.empty()) return std::nullopt;
-  return parse_number(flag, text);
+  return parse_number(flag, text, false, range);
 }
 
 SpectrumSettings settings_from(const SpectrumFlags& f) {
   SpectrumSettings s;
-  const auto model = parse_spectrum_model(f.model);
-  if (!model) {
-    throw UsageError("--model",
-                     "expected one of phillips, pierson-moskowitz, jonswap, tma, "
-                     "donelan, unified; got '" +
-                         f.model + "'");
-  }
-  s.model = *model;
-  s.wind_speed = parse_number("--wind-speed", f.wind_speed);
-  s.fetch = parse_number("--fetch", f.fetch);
-  s.depth = parse_number("--depth", f.depth, true);
-  s.gravity = parse_number("--gravity", f.gravity);
-  const double direction_deg = parse_number("--wind-direction-deg", f.wind_direction);
-  if (std::fabs(direction_deg) > 720.0) {
-    throw UsageError("--wind-direction-deg",
-                     "must be in [-720, 720] degrees, got " + f.wind_direction);
-  }
+  s.model = parse_choice<UsageError>(kSpectrumModels, "--model", f.model);
+  s.wind_speed = parse_number("--wind-speed", f.wind_speed, false, "[0.1, 60] m/s");
+  s.fetch = parse_number("--fetch", f.fetch, false, "[1, 1e+07] m");
+  s.depth = parse_number("--depth", f.depth, true, "[0.01, inf] m");
+  s.gravity = parse_number("--gravity", f.gravity, false, "[0.1, 100] m/s^2");
+  const double direction_deg =
+      parse_number_in("--wind-direction-deg", f.wind_direction, -720.0, 720.0, " degrees");
   s.wind_direction = direction_deg * kDegree;
   if (!f.spreading.empty()) {
-    s.spreading = parse_spreading_model(f.spreading);
-    if (!s.spreading) {
-      throw UsageError("--spreading",
-                       "expected one of cos2, cos4, mitsuyasu, hasselmann, "
-                       "mastin, gamper, donelan, donelan-banner, unified; got '" +
-                           f.spreading + "'");
-    }
+    s.spreading = parse_choice<UsageError>(kSpreadingModels, "--spreading", f.spreading);
   }
   if (!f.dispersion.empty()) {
-    s.dispersion = parse_dispersion(f.dispersion);
-    if (!s.dispersion) {
-      throw UsageError("--dispersion",
-                       "expected one of deep, finite-depth, capillary; got '" + f.dispersion + "'");
-    }
+    s.dispersion = parse_choice<UsageError>(kDispersionKinds, "--dispersion", f.dispersion);
   }
-  s.swell = parse_number("--swell", f.swell);
-  s.spread_blend = parse_number("--spread-blend", f.spread_blend);
-  s.gamma = optional_number("--gamma", f.gamma);
-  s.alpha = optional_number("--alpha", f.alpha);
-  s.peak_frequency = optional_number("--peak-omega", f.peak_omega);
-  s.sigma_low = optional_number("--sigma-low", f.sigma_low);
-  s.sigma_high = optional_number("--sigma-high", f.sigma_high);
-  if (f.pm_wind == "u10") {
-    s.pm_wind = PiersonMoskowitzWind::u10;
-  } else if (f.pm_wind == "u19.5") {
-    s.pm_wind = PiersonMoskowitzWind::u19_5;
-  } else {
-    throw UsageError("--pm-wind", "expected u10 or u19.5, got '" + f.pm_wind + "'");
-  }
-  if (f.tma_attenuation == "exact") {
-    s.depth_attenuation = DepthAttenuation::exact;
-  } else if (f.tma_attenuation == "thompson-vincent") {
-    s.depth_attenuation = DepthAttenuation::thompson_vincent;
-  } else {
-    throw UsageError("--tma-attenuation",
-                     "expected exact or thompson-vincent, got '" + f.tma_attenuation + "'");
-  }
-  s.phillips_suppression = parse_number("--phillips-suppression", f.suppression);
+  s.swell = parse_number("--swell", f.swell, false, "[0, 1]");
+  s.spread_blend = parse_number("--spread-blend", f.spread_blend, false, "[0, 1]");
+  s.gamma = optional_number("--gamma", f.gamma, "[1, 20]");
+  s.alpha = optional_number("--alpha", f.alpha, "(0, 10]");
+  s.peak_frequency = optional_number("--peak-omega", f.peak_omega, "(0, 1e+04] rad/s");
+  s.sigma_low = optional_number("--sigma-low", f.sigma_low, "(0, 1]");
+  s.sigma_high = optional_number("--sigma-high", f.sigma_high, "(0, 1]");
+  s.pm_wind = parse_choice<UsageError>(kPiersonMoskowitzWinds, "--pm-wind", f.pm_wind);
+  s.depth_attenuation =
+      parse_choice<UsageError>(kDepthAttenuations, "--tma-attenuation", f.tma_attenuation);
+  s.phillips_suppression = parse_number("--phillips-suppression", f.suppression, false, "[0, 0.1]");
   s.printed_spreading = f.printed;
   s.allow_extrapolation = f.allow_extrapolation;
   return s;
@@ -157,11 +127,11 @@ void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::str
     const std::string item = list.substr(start, comma - start);
     const std::size_t colon = item.find(':');
     if (colon == std::string::npos) {
-      throw UsageError("--wavevector",
-                       "expected kx:kz pairs separated by commas, got '" + item + "'");
+      throw UsageError("--wavevector", "expected kx:kz pairs separated by commas, got '" +
+                                           escape_value(item) + "'");
     }
-    ks.push_back({parse_number("--wavevector", item.substr(0, colon)),
-                  parse_number("--wavevector", item.substr(colon + 1))});
+    ks.push_back({parse_number("--wavevector", item.substr(0, colon), false, "in rad/m"),
+                  parse_number("--wavevector", item.substr(colon + 1), false, "in rad/m")});
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -173,11 +143,14 @@ void write_wavevector_table(std::ostream& out, const Spectrum& s, const std::str
 }
 
 void write_moments(std::ostream& out, const Spectrum& s, const std::string& k_max_text) {
-  const double k_max =
-      k_max_text.empty() ? kDefaultMaxWavenumber : parse_number("--k-max", k_max_text, true);
-  if (!(k_max > s.peak_wavenumber) || k_max > kMaxMomentWavenumber) {
-    throw UsageError("--k-max", "must be in (k_p, 1e6] rad/m with the peak wavenumber k_p = " +
-                                    format_number(s.peak_wavenumber) + " rad/m, got " + k_max_text);
+  const double k_max = k_max_text.empty()
+                           ? kDefaultMaxWavenumber
+                           : parse_number("--k-max", k_max_text, true, "(k_p, 1e+06] rad/m");
+  if (!(k_max > s.peak_wavenumber) || (k_max > kMaxMomentWavenumber && k_max != HUGE_VAL)) {
+    throw UsageError("--k-max",
+                     "must be in (k_p, 1e6] rad/m or inf, with the peak wavenumber k_p = " +
+                         format_number(s.peak_wavenumber) + " rad/m, got " +
+                         escape_value(k_max_text));
   }
   SpectralMoments m;
   try {
@@ -274,15 +247,18 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
     }
     const Spectrum s = spectrum_from(*flags);
     if (!flags->omega.empty()) {
-      const std::vector<double> omegas = parse_number_list("--omega", flags->omega);
+      const std::vector<double> omegas =
+          parse_number_list("--omega", flags->omega, ">= 0 rad/s each");
       for (const double w : omegas) {
         if (w < 0.0)
-          throw UsageError("--omega", "frequencies must be >= 0, got " + format_number(w));
+          throw UsageError("--omega",
+                           "frequencies must be finite and >= 0 rad/s, got " + format_number(w));
       }
       if (flags->theta.empty()) {
         write_omega_table(out, s, omegas);
       } else {
-        write_directional_table(out, s, omegas, parse_number_list("--theta-deg", flags->theta));
+        write_directional_table(out, s, omegas,
+                                parse_number_list("--theta-deg", flags->theta, "in degrees, each"));
       }
     } else if (!flags->wavevector.empty()) {
       write_wavevector_table(out, s, flags->wavevector);

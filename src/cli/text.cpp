@@ -1,8 +1,11 @@
 #include "cli/text.h"
 
+#include "core/direction.h"
+
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -12,26 +15,109 @@
 
 namespace oceanref::cli {
 
-double parse_number(const std::string& flag, std::string_view text, bool allow_infinity) {
+namespace {
+// The fewest significant digits that read back as `v` (a range reads "[0.1, 1e+30]").
+std::string short_number(double v) {
+  char buffer[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    if (std::strtod(buffer, nullptr) == v) break;
+  }
+  // Whole numbers below 1e15 in plain digits: 1000, not 1e+03.
+  if (std::string_view(buffer).find('e') != std::string_view::npos && v == std::floor(v) &&
+      std::fabs(v) < 1e15) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", v);
+  }
+  return buffer;
+}
+std::string range_text(double lo, double hi, const std::string& unit) {
+  return "[" + short_number(lo) + ", " + short_number(hi) + "]" + unit;
+}
+std::string quote_value(std::string_view text) {
+  return "'" + escape_value(text) + "'";
+}
+}  // namespace
+
+double parse_number(const std::string& flag, std::string_view text, bool allow_infinity,
+                    const std::string& range) {
   const std::string s(text);
   if (allow_infinity && (s == "inf" || s == "infinity")) return HUGE_VAL;
   errno = 0;
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
-  const bool whole = !s.empty() && end == s.c_str() + s.size();
+  // The whole text (a NUL byte inside ends strtod early and is caught here), no leading space.
+  const bool whole = !s.empty() && end == s.c_str() + s.size() &&
+                     !std::isspace(static_cast<unsigned char>(s.front()));
   if (!whole || !std::isfinite(v) || errno == ERANGE) {
-    throw UsageError(flag, "expected a finite number" +
-                               std::string(allow_infinity ? " or inf" : "") + ", got '" + s + "'");
+    throw UsageError(
+        flag,
+        "expected a finite number" + std::string(allow_infinity ? " or inf" : "") +
+            (range.empty() ? "" : (range[0] == '[' || range[0] == '(' ? " in " : " ") + range) +
+            ", got " + quote_value(s));
   }
   return v;
 }
 
-std::vector<double> parse_number_list(const std::string& flag, std::string_view text) {
+double parse_number_in(const std::string& flag, std::string_view text, double lo, double hi,
+                       const std::string& unit) {
+  const std::string range = range_text(lo, hi, unit);
+  const double v = parse_number(flag, text, false, range);
+  if (v < lo || v > hi)
+    throw UsageError(flag, "must be in " + range + ", got " + quote_value(text));
+  return v;
+}
+
+long long parse_integer_in(const std::string& flag, std::string_view text, long long lo,
+                           long long hi, const std::string& note) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]" + note;
+  const std::string s(text);
+  const std::size_t digits = !s.empty() && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+  const bool decimal =
+      s.size() > digits && s.find_first_not_of("0123456789", digits) == std::string::npos;
+  if (!decimal) {
+    throw UsageError(flag, "expected an integer in " + range + ", got " + quote_value(text));
+  }
+  errno = 0;
+  const long long v = std::strtoll(s.c_str(), nullptr, 10);
+  if (errno == ERANGE || v < lo || v > hi) {
+    throw UsageError(flag, "must be in " + range + ", got " + quote_value(text));
+  }
+  return v;
+}
+
+CLI::Validator integer_in(long long lo, long long hi, const std::string& note) {
+  return CLI::Validator(
+      [lo, hi, note](std::string& text) -> std::string {
+        try {
+          (void)parse_integer_in("", text, lo, hi, note);
+        } catch (const UsageError& e) {
+          return std::string(e.what()).substr(2);  // without the empty flag's ": "
+        }
+        return "";
+      },
+      "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", "integer_in");
+}
+
+CLI::Validator number_in(double lo, double hi, const std::string& unit) {
+  return CLI::Validator(
+      [lo, hi, unit](std::string& text) -> std::string {
+        try {
+          (void)parse_number_in("", text, lo, hi, unit);
+        } catch (const UsageError& e) {
+          return std::string(e.what()).substr(2);
+        }
+        return "";
+      },
+      "NUMBER in " + range_text(lo, hi, unit), "number_in");
+}
+
+std::vector<double> parse_number_list(const std::string& flag, std::string_view text,
+                                      const std::string& range) {
   std::vector<double> values;
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    values.push_back(parse_number(flag, text.substr(start, comma - start)));
+    values.push_back(parse_number(flag, text.substr(start, comma - start), false, range));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -40,14 +126,10 @@ std::vector<double> parse_number_list(const std::string& flag, std::string_view 
 
 std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_view text) {
   const std::vector<double> v = parse_number_list(flag, text);
-  if (v.size() != 3) throw UsageError(flag, "expected x,y,z, got '" + std::string(text) + "'");
-  // Scaled by the largest component first, so that neither 1e308 (whose square overflows) nor
-  // 1e-300 (whose square underflows) loses the direction.
-  const double scale = std::max({std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])});
-  if (!(scale > 0.0)) throw UsageError(flag, "the vector must not be zero");
-  const double x = v[0] / scale, y = v[1] / scale, z = v[2] / scale;
-  const double length = std::sqrt(x * x + y * y + z * z);
-  return {x / length, y / length, z / length};
+  if (v.size() != 3) throw UsageError(flag, "expected x,y,z, got " + quote_value(text));
+  const std::optional<std::array<double, 3>> d = unit_direction({v[0], v[1], v[2]});
+  if (!d) throw UsageError(flag, "the vector must not be zero");
+  return *d;
 }
 
 int resolve_threads(int requested) {

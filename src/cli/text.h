@@ -1,6 +1,7 @@
 // Strict number parsing and exact number printing for the command line.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <array>
 #include <stdexcept>
 #include <string>
@@ -31,10 +32,28 @@ int resolve_threads(int requested);
 // "<who>: <message>" on stderr, only when it is a terminal (pipes and CI logs stay clean).
 void progress(std::string_view who, const std::string& message);
 
-// The whole text must be one finite number ("inf" accepted when allow_infinity).
-double parse_number(const std::string& flag, std::string_view text, bool allow_infinity = false);
-// Comma-separated finite numbers, at least one.
-std::vector<double> parse_number_list(const std::string& flag, std::string_view text);
+// The whole text must be one finite number ("inf" accepted when allow_infinity). The message of a
+// bad value quotes it escaped (escape_value) and, when `range` is given, states the accepted range
+// ("[0, 180] degrees" or "(0, 1]" read "in [0, 180] degrees", "in (0, 1]"; other text, e.g.
+// ">= 0 rad/s", follows as is).
+double parse_number(const std::string& flag, std::string_view text, bool allow_infinity = false,
+                    const std::string& range = "");
+// One finite number in [lo, hi] (the message states the range, with `unit` after it).
+double parse_number_in(const std::string& flag, std::string_view text, double lo, double hi,
+                       const std::string& unit = "");
+// One integer in [lo, hi] written in decimal (an optional sign, digits, nothing else).
+long long parse_integer_in(const std::string& flag, std::string_view text, long long lo,
+                           long long hi, const std::string& note = "");
+
+// CLI11 checks for options that CLI11 converts itself (int and double variables): run on the text
+// before the conversion, so that every bad value - not a number, trailing bytes, overflow,
+// non-finite, out of range - fails with "--flag: expected an integer in [lo, hi]<note>, got
+// '<escaped text>'" (CLI11 prefixes the flag) instead of CLI11's "Could not convert".
+CLI::Validator integer_in(long long lo, long long hi, const std::string& note = "");
+CLI::Validator number_in(double lo, double hi, const std::string& unit = "");
+// Comma-separated finite numbers, at least one (`range`: stated in the message of a bad one).
+std::vector<double> parse_number_list(const std::string& flag, std::string_view text,
+                                      const std::string& range = "");
 // Three comma-separated finite numbers, not all zero, normalized to unit length.
 std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_view text);
 

@@ -16,6 +16,8 @@
 
 #include "core/format.h"
 #include "core/math.h"
+#include "core/parallel.h"
+#include "core/vec3.h"
 #include "io/exr.h"
 #include "shading/lighting_terms.h"
 #include "shading/ocean_lighting.h"
@@ -76,20 +78,6 @@ SweepSpec quick_sweep() {
   return s;
 }
 
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 combine(double a, const Vec3& x, double b, const Vec3& y) {
-  return {a * x[0] + b * y[0], a * x[1] + b * y[1], a * x[2] + b * y[2]};
-}
-Vec3 unit(const Vec3& v) {
-  const double n = std::sqrt(dot(v, v));
-  return {v[0] / n, v[1] / n, v[2] / n};
-}
-
 struct SunSetting {
   std::string name;
   double zenith_deg;
@@ -139,14 +127,14 @@ Sweep make_sweep(const SweepSpec& spec) {
     for (std::size_t k = 0; k < sweep.suns.size(); ++k) {
       const Vec3 sun = sweep.suns[k].sky.sun_direction;
       Vec3 towards = combine(1.0, sun, -dot(sun, normal), normal);
-      towards = dot(towards, towards) > 1e-18 ? unit(towards) : frame.tangent_x;
+      towards = dot(towards, towards) > 1e-18 ? normalize(towards) : frame.tangent_x;
       const Vec3 side = cross(normal, towards);
       for (const double vn : spec.cos_view) {
         const double tangential = std::sqrt(1.0 - vn * vn);
         for (const double phi : spec.azimuths_deg) {
           const math::SinCos a = math::sincos(phi * kDeg);
           const Vec3 across = combine(-a.cos, towards, a.sin, side);
-          const Vec3 view = unit(combine(vn, normal, tangential, across));
+          const Vec3 view = normalize(combine(vn, normal, tangential, across));
           for (const SlopeVariance& s : spec.roughness) {
             const Case c{view, frame, s, k};
             sweep.lit.push_back(c);
@@ -564,8 +552,8 @@ void print_markdown(std::ostream& out, const Map& map) {
   out << "} × σ² (upwind/crosswind) ∈ {";
   for (std::size_t i = 0; i < spec.roughness.size(); ++i) {
     const SlopeVariance& s = spec.roughness[i];
-    out << (i ? ", " : "") << short_number(s.x, 2);
-    if (s.y != s.x) out << '/' << short_number(s.y, 2);
+    out << (i ? ", " : "") << short_number(s.upwind, 2);
+    if (s.crosswind != s.upwind) out << '/' << short_number(s.crosswind, 2);
   }
   out << "} × normal ∈ {flat" << (spec.tilted.size() > 1 ? ", tilted 30°" : "")
       << "} × sun zenith ∈ {";

@@ -29,7 +29,7 @@ struct PreparedRender {
   Scene scene;
   Ocean ocean;
   RenderJob job;
-  WindSlopeVariance unresolved;
+  SlopeVariance unresolved;
 };
 // `samples_per_axis` > 0 overrides the scene's; `log` (may be empty) receives progress notes.
 std::unique_ptr<PreparedRender> prepare_render(

@@ -15,6 +15,7 @@
 #include "conformance/float32_backend.h"
 #include "core/format.h"
 #include "core/math.h"
+#include "core/parallel.h"
 #include "shading/ocean_lighting.h"
 #include "waves/direct_sum.h"
 
@@ -289,7 +290,7 @@ void bench_render_impl(std::ostream& out, const std::string& path, int threads, 
   const auto t0 = std::chrono::steady_clock::now();
   const Ocean ocean = realize_ocean(scene.waves, threads);
   RenderJob job = scene_render_job(scene, ocean, threads);
-  const WindSlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
+  const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
   const double prepare =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   RenderTimes times;
@@ -320,18 +321,14 @@ void bench_slope_budget_impl(std::ostream& out, const std::string& path, int thr
   const Ocean ocean = realize_ocean(scene.waves, threads);
   out << "normals,interpolation,axis,moment,resolved,above_cutoff,interpolation_loss,sampling,"
          "sigma2,interpolation_loss_share_of_bands,identity_error\n";
-  for (const auto& [normals_name, normals] :
-       {std::pair{"surface", ShadingNormals::surface},
-        std::pair{"high_resolution", ShadingNormals::high_resolution}}) {
-    for (const auto& [name, mode] : {std::pair{"bilinear", Interpolation::bilinear},
-                                     std::pair{"bicubic", Interpolation::bicubic},
-                                     std::pair{"direct", Interpolation::direct}}) {
+  for (const auto& [normals, normals_name] : kShadingNormals) {
+    for (const auto& [mode, name] : kInterpolations) {
       scene.shading.normals = normals;
       scene.shading.interpolation = mode;
       const RenderJob job = scene_render_job(scene, ocean, threads);
       const SlopeVarianceBudget b = slope_budget(job, scene.waves);
       for (const bool upwind : {true, false}) {
-        const auto v = [&](const WindSlopeVariance& w) { return upwind ? w.upwind : w.crosswind; };
+        const auto v = [&](const SlopeVariance& w) { return upwind ? w.upwind : w.crosswind; };
         out << normals_name << ',' << name << ',' << (upwind ? "upwind" : "crosswind") << ','
             << format_number(v(b.moment)) << ',' << format_number(v(b.resolved)) << ','
             << format_number(v(b.above_cutoff)) << ',' << format_number(v(b.interpolation_loss))
@@ -420,7 +417,7 @@ void bench_study_impl(std::ostream& out, const std::string& path, int threads) {
     scene.image.samples_per_axis = axis;
     const Ocean ocean = realize_ocean(scene.waves, threads);
     RenderJob job = scene_render_job(scene, ocean, threads);
-    const WindSlopeVariance u = unresolved_slope_variance(job, scene.waves);
+    const SlopeVariance u = unresolved_slope_variance(job, scene.waves);
     RenderedImage image;
     *seconds = seconds_of([&] { image = render(job, u); });
     return image;
@@ -523,11 +520,9 @@ std::vector<InterpolationError> interpolation_errors(const Scene& scene, int thr
                                    300.0 * std::fmod(i / (g * g), 1.0)));
   }
   std::vector<InterpolationError> rows;
-  for (const auto& [name, mode] :
-       {std::pair{"bilinear", Interpolation::bilinear},
-        std::pair{"bicubic", Interpolation::bicubic}, std::pair{"direct", Interpolation::direct}}) {
+  for (const auto& [mode, name] : kInterpolations) {
     InterpolationError e;
-    e.mode = name;
+    e.mode = std::string(name);
     e.interpolation = mode;
     const auto t0 = std::chrono::steady_clock::now();
     for (int i = 1; i <= points; ++i) {

@@ -1,9 +1,12 @@
 // Exact number printing shared by the library's text outputs (CSV tables, EXR attributes) and
-// the command line.
+// the command line; values quoted in error messages, escaped for a terminal.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 namespace oceanref {
 
@@ -12,6 +15,29 @@ inline std::string format_number(double v) {
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%.17g", v);
   return buffer;
+}
+
+// A value quoted in an error message (scene files, the command line), safe for a terminal:
+// printable ASCII as is, every other byte (control bytes, NUL, DEL, all bytes of non-ASCII text)
+// as \xNN and a backslash as \\; text over `max_bytes` bytes is cut there and ends with "…".
+inline std::string escape_value(std::string_view text, std::size_t max_bytes = 64) {
+  static const char* const hex = "0123456789ABCDEF";
+  std::string out;
+  const std::size_t n = std::min(text.size(), max_bytes);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\\') {
+      out += "\\\\";
+    } else if (c >= 0x20 && c < 0x7F) {
+      out += static_cast<char>(c);
+    } else {
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 0xF];
+    }
+  }
+  if (text.size() > max_bytes) out += "\u2026";
+  return out;
 }
 
 }  // namespace oceanref

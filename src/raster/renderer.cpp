@@ -12,6 +12,7 @@
 #include "core/format.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
+#include "core/parallel.h"
 #include "spectrum/moments.h"
 #include "waves/fft.h"
 
@@ -20,9 +21,6 @@ namespace oceanref {
 namespace {
 Vec3 to_vec3(const glm::dvec3& v) {
   return {v.x, v.y, v.z};
-}
-double dot3(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 struct Geometry {
@@ -82,14 +80,14 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
 
 SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const Geometry& g,
                          const Fragment& f, const glm::dvec3& ray, const FrameLighting& light,
-                         const WindSlopeVariance& unresolved) {
+                         const SlopeVariance& unresolved) {
   SampleProbe p;
   const ShadingSettings& sh = job.shading;
   if (f.triangle < 0) {
     // The sky (and the sun disk) behind the sea.
     const Vec3 d = to_vec3(ray);
     p.radiance = sky_radiance_rgb(job.sky, d);
-    if (dot3(d, light.sun_direction) >= light.cos_sun_radius) {
+    if (dot(d, light.sun_direction) >= light.cos_sun_radius) {
       for (std::size_t c = 0; c < 3; ++c) p.radiance[c] += light.sun_radiance[c];
     }
     return p;
@@ -108,16 +106,15 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
   // The geometry faces the camera but the shading normal (from waves finer than the grid) may
   // not: bend it towards the viewer until V·N = 0.001 (documented in README, "render").
   constexpr double kMinimumCosView = 1e-3;
-  const double vn = dot3(p.view, p.normal);
+  const double vn = dot(p.view, p.normal);
   if (vn < kMinimumCosView) {
     Vec3 n{};
     for (std::size_t c = 0; c < 3; ++c) n[c] = p.normal[c] + (kMinimumCosView - vn) * p.view[c];
-    const double length = std::sqrt(dot3(n, n));
-    for (std::size_t c = 0; c < 3; ++c) p.normal[c] = n[c] / length;
+    p.normal = normalize(n);
   }
   const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
-  const SlopeVariance s{unresolved.upwind, unresolved.crosswind};
-  p.lighting = lighting_terms(sh, job.sky, light, p.view, frame, s, job.estimate_fast_error);
+  p.lighting =
+      lighting_terms(sh, job.sky, light, p.view, frame, unresolved, job.estimate_fast_error);
   const LightingTerms& l = p.lighting;
   for (std::size_t c = 0; c < 3; ++c) {
     p.radiance[c] = l.sun[c] + l.sky[c] + l.sea[c];
@@ -126,7 +123,7 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
   if (sh.whitecaps) {
     // Per-sample indicator; the S×S samples of a pixel give its footprint coverage.
     p.whitecap_coverage = whitecap_coverage(p.fields.jacobian, 0.0, sh.whitecap_threshold);
-    const double cos_sun = std::fmax(0.0, dot3(p.normal, light.sun_direction));
+    const double cos_sun = std::fmax(0.0, dot(p.normal, light.sun_direction));
     Vec3 e_sun{};
     for (std::size_t c = 0; c < 3; ++c) {
       e_sun[c] = light.sun_radiance[c] * light.sun_solid_angle * cos_sun;
@@ -158,12 +155,11 @@ SlopeVarianceBudget slope_budget(const RenderJob& job, const WaveSettings& waves
                                job.shading.interpolation, job.shading.normals);
 }
 
-WindSlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves) {
+SlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves) {
   return slope_budget(job, waves).unresolved;
 }
 
-RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
-                     RenderTimes* times) {
+RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, RenderTimes* times) {
   OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
                    "a render job names its ocean and has >= 1 sample per axis");
   const ReferenceFpEnvironment fp;
@@ -325,7 +321,7 @@ void require_finite(const RenderedImage& image) {
   }
 }
 
-std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
+std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& unresolved,
                                      int pixel_x, int pixel_y) {
   OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
                    "a render job names its ocean and has >= 1 sample per axis");

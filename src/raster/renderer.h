@@ -53,7 +53,7 @@ struct RenderedImage {
   std::vector<Vec3> lighting_error;
   long unconverged_samples = 0;  // samples whose reference integrals missed the tolerance
   long integrand_evaluations = 0;
-  WindSlopeVariance unresolved;  // the BRDF roughness used
+  SlopeVariance unresolved;  // the BRDF roughness used
   double displacement_bound = 0.0;
 };
 
@@ -64,7 +64,7 @@ SlopeVarianceBudget slope_budget(const RenderJob& job, const WaveSettings& waves
 // The unresolved slope variance, the BRDF's σ²: every slope variance the shaded fields do not
 // carry — the spectrum beyond their bands, what interpolation removes, and the realization's
 // deficit — so that resolved + σ² equals the spectrum's moment per axis.
-WindSlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves);
+SlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves);
 
 // Wall-clock seconds per stage (benchmarks).
 struct RenderTimes {
@@ -87,7 +87,7 @@ void require_finite(const RenderedImage& image);
 
 // Renders the job; the image is checked with require_finite (a non-finite pixel is an error,
 // whatever its cause).
-RenderedImage render(const RenderJob& job, const WindSlopeVariance& unresolved,
+RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved,
                      RenderTimes* times = nullptr);
 
 // The mesh render rasterizes for the job's frame: the projected grid (its displacement bound
@@ -119,7 +119,7 @@ struct SampleProbe {
 };
 // The shading of each sample of one pixel (its fragment from a full raster pass), in the
 // order render averages them: sample rows top to bottom, each left to right.
-std::vector<SampleProbe> probe_pixel(const RenderJob& job, const WindSlopeVariance& unresolved,
+std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& unresolved,
                                      int pixel_x, int pixel_y);
 // The pixel's radiance from its samples as render resolves it: Σ (1/S²)·radiance in sample
 // order, from 0 — the same bits as RenderedImage::radiance for that pixel.

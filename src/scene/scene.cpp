@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -10,7 +12,10 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
+#include "core/choice.h"
+#include "core/format.h"
 #include "core/fp_environment.h"
 #include "shading/reference_lighting.h"
 
@@ -91,15 +96,130 @@ const std::vector<std::string>& scene_key_paths() {
 namespace {
 using json = nlohmann::json;
 
+// Builds the document with nlohmann's DOM builder while keeping the JSON path of the value being
+// read, so that a duplicate key or a number that overflows a double is reported at its path.
+class StrictSceneSax {
+ public:
+  explicit StrictSceneSax(json& root) : dom_(root, true) {}
+
+  bool null() { return value(dom_.null()); }
+  bool boolean(bool v) { return value(dom_.boolean(v)); }
+  bool number_integer(json::number_integer_t v) { return value(dom_.number_integer(v)); }
+  bool number_unsigned(json::number_unsigned_t v) { return value(dom_.number_unsigned(v)); }
+  bool number_float(json::number_float_t v, const json::string_t& s) {
+    return value(dom_.number_float(v, s));
+  }
+  bool string(json::string_t& v) { return value(dom_.string(v)); }
+  bool binary(json::binary_t& v) { return value(dom_.binary(v)); }
+  bool start_object(std::size_t n) {
+    frames_.push_back({true, {}, {}, 0});
+    return dom_.start_object(n);
+  }
+  bool key(json::string_t& k) {
+    Frame& f = frames_.back();
+    if (!f.keys.insert(k).second) {
+      f.key = k;
+      throw SceneError(path(),
+                       "duplicate key (given more than once in the same object; give each "
+                       "key once)");
+    }
+    f.key = k;
+    return dom_.key(k);
+  }
+  bool end_object() {
+    frames_.pop_back();
+    return value(dom_.end_object());
+  }
+  bool start_array(std::size_t n) {
+    frames_.push_back({false, {}, {}, 0});
+    return dom_.start_array(n);
+  }
+  bool end_array() {
+    frames_.pop_back();
+    return value(dom_.end_array());
+  }
+  bool parse_error(std::size_t /*position*/, const std::string& last_token,
+                   const json::exception& e) {
+    if (e.id == 406) {  // out_of_range.406: a number that overflows a double
+      throw SceneError(path(), "the number " + escape_value(last_token) +
+                                   " is out of the range of a double (accepted: finite numbers, "
+                                   "magnitude at most 1.7976931348623157e+308)");
+    }
+    std::string what = e.what();
+    const std::size_t bracket = what.find("] ");
+    if (what.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos) {
+      what = what.substr(bracket + 2);
+    }
+    // nlohmann's message gives the line and column (1-based) of the offending byte.
+    throw SceneError(source_, "not valid JSON: " + escape_value(what, 200));
+  }
+
+  std::string source_;
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;
+    std::size_t index;
+  };
+  // The path of the value being read: keys joined by '.', array indices as [i].
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : frames_) {
+      if (f.object) {
+        p += (p.empty() ? "" : ".") + escape_value(f.key);
+      } else {
+        p += "[" + std::to_string(f.index) + "]";
+      }
+    }
+    return p.empty() ? "(top level)" : p;
+  }
+  bool value(bool ok) {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+    return ok;
+  }
+  nlohmann::detail::json_sax_dom_parser<json> dom_;
+  std::vector<Frame> frames_;
+};
+
+// A JSON value quoted in a message: its type and its text (escaped, cut when long).
+std::string describe(const json& v) {
+  const std::string text = escape_value(v.dump(-1, ' ', false, json::error_handler_t::replace));
+  switch (v.type()) {
+    case json::value_t::string:
+      return "the string " + text;
+    case json::value_t::boolean:
+      return "the boolean " + text;
+    case json::value_t::null:
+      return "null";
+    case json::value_t::array:
+      return "an array " + text;
+    case json::value_t::object:
+      return "an object " + text;
+    default:
+      return "the number " + text;
+  }
+}
+
 std::string join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
+// The fewest significant digits that read back as `v` (0.1, not 0.10000000000000001).
 std::string shortest(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  if (!std::isfinite(v)) return v > 0 ? "inf" : (v < 0 ? "-inf" : "nan");
+  char buffer[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    if (std::strtod(buffer, nullptr) == v) break;
+  }
+  // Whole numbers below 1e15 in plain digits: 1000, not 1e+03.
+  if (std::string_view(buffer).find('e') != std::string_view::npos && v == std::floor(v) &&
+      std::fabs(v) < 1e15) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", v);
+  }
+  return buffer;
 }
 
 // The keys of the object at `path` ("" for the top level): the next component of every key path
@@ -118,20 +238,43 @@ std::vector<std::string> section_keys(const std::string& path) {
   return keys;
 }
 
+// A finite number in [lo, hi]; `lo`/`hi` of +-kTypeOnly mean that the range is checked later (by
+// make_spectrum, which knows the model), so the message states only the type.
+constexpr double kTypeOnly = 1e300;
+double checked_number(const json& v, const std::string& path, double lo, double hi,
+                      const std::string& unit) {
+  const bool ranged = lo > -kTypeOnly || hi < kTypeOnly;
+  const std::string range =
+      ranged ? " in [" + shortest(lo) + ", " + shortest(hi) + "]" + unit : std::string();
+  if (!v.is_number()) throw SceneError(path, "expected a number" + range + ", got " + describe(v));
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) {
+    throw SceneError(path, "expected a finite number" + range + ", got " + shortest(x));
+  }
+  if (x < lo || x > hi) {
+    throw SceneError(path, "must be in [" + shortest(lo) + ", " + shortest(hi) + "]" + unit +
+                               ", got " + shortest(x));
+  }
+  return x;
+}
+
 // A JSON object whose keys are checked against the accepted set (section_keys of its path).
 struct Section {
   const json& value;
   std::string path;
 
   Section(const json& v, std::string p) : value(v), path(std::move(p)) {
-    if (!value.is_object())
-      throw SceneError(path.empty() ? "(top level)" : path, "expected an object");
+    if (!value.is_object()) {
+      throw SceneError(path.empty() ? "(top level)" : path,
+                       "expected an object, got " + describe(value));
+    }
     const std::vector<std::string> keys = section_keys(path);
     for (const auto& item : value.items()) {
       if (std::find(keys.begin(), keys.end(), item.key()) == keys.end()) {
         std::string list;
         for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
-        throw SceneError(join(path, item.key()), "unknown key (accepted: " + list + ")");
+        throw SceneError(join(path, escape_value(item.key())),
+                         "unknown key (accepted: " + list + ")");
       }
     }
   }
@@ -142,15 +285,7 @@ struct Section {
   double number(const char* key, double fallback, double lo, double hi,
                 const char* unit = "") const {
     if (!has(key)) return fallback;
-    const json& v = at(key);
-    if (!v.is_number()) throw SceneError(where(key), "expected a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) throw SceneError(where(key), "expected a finite number");
-    if (x < lo || x > hi) {
-      throw SceneError(where(key), "must be in [" + shortest(lo) + ", " + shortest(hi) + "]" +
-                                       unit + ", got " + shortest(x));
-    }
-    return x;
+    return checked_number(at(key), where(key), lo, hi, unit);
   }
   std::optional<double> optional_number(const char* key, double lo, double hi) const {
     if (!has(key)) return std::nullopt;
@@ -159,35 +294,41 @@ struct Section {
   int integer(const char* key, int fallback, int lo, int hi) const {
     if (!has(key)) return fallback;
     const json& v = at(key);
-    if (!v.is_number_integer()) throw SceneError(where(key), "expected an integer");
-    const auto x = v.get<long long>();
-    if (x < lo || x > hi) {
-      throw SceneError(where(key), "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                                       "], got " + std::to_string(x));
+    const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    if (!v.is_number_integer()) {
+      throw SceneError(where(key), "expected an integer in " + range + ", got " + describe(v));
     }
-    return static_cast<int>(x);
+    // An unsigned value over INT64_MAX must not wrap (18446744073709551615 is not -1).
+    const bool in_range =
+        v.is_number_unsigned()
+            ? v.get<std::uint64_t>() <= static_cast<std::uint64_t>(hi) &&
+                  (lo <= 0 || v.get<std::uint64_t>() >= static_cast<std::uint64_t>(lo))
+            : v.get<std::int64_t>() >= lo && v.get<std::int64_t>() <= hi;
+    if (!in_range) {
+      throw SceneError(where(key), "must be in " + range + ", got " + escape_value(v.dump()));
+    }
+    return static_cast<int>(v.get<std::int64_t>());
   }
   bool boolean(const char* key, bool fallback) const {
     if (!has(key)) return fallback;
-    if (!at(key).is_boolean()) throw SceneError(where(key), "expected true or false");
+    if (!at(key).is_boolean()) {
+      throw SceneError(where(key), "expected true or false, got " + describe(at(key)));
+    }
     return at(key).get<bool>();
   }
   std::string text(const char* key, const std::string& fallback) const {
     if (!has(key)) return fallback;
-    if (!at(key).is_string()) throw SceneError(where(key), "expected a string");
+    if (!at(key).is_string()) {
+      throw SceneError(where(key), "expected a string, got " + describe(at(key)));
+    }
     return at(key).get<std::string>();
   }
 };
 
-template <class T>
-T choice(const Section& s, const char* key, std::optional<T> (*parse)(std::string_view),
-         const std::string& fallback, const char* accepted) {
-  const std::string name = s.text(key, fallback);
-  const std::optional<T> v = parse(name);
-  if (!v)
-    throw SceneError(s.where(key),
-                     std::string("expected one of ") + accepted + "; got '" + name + "'");
-  return *v;
+// The choice of a table (core/choice.h) that the key names, `fallback` when it is absent.
+template <class Table>
+auto choice(const Section& s, const char* key, const Table& table, const std::string& fallback) {
+  return parse_choice<SceneError>(table, s.where(key), s.text(key, fallback));
 }
 
 bool is_power_of_two(int n) {
@@ -217,10 +358,9 @@ std::string spectrum_path(const std::string& key) {
 SpectrumSettings parse_spectrum(const Section& spectrum, const Section* spreading,
                                 const Section& waves) {
   SpectrumSettings s;
-  s.model = choice<SpectrumModel>(spectrum, "model", parse_spectrum_model, "jonswap",
-                                  "phillips, pierson-moskowitz, jonswap, tma, donelan, unified");
+  s.model = choice(spectrum, "model", kSpectrumModels, "jonswap");
   // Ranges are checked by make_spectrum (one place); here only types and finiteness.
-  const double big = 1e300;
+  const double big = kTypeOnly;
   s.wind_speed = spectrum.number("wind_speed", s.wind_speed, -big, big);
   s.wind_direction = spectrum.number("wind_direction_deg", 0.0, -720.0, 720.0, " degrees") *
                      std::numbers::pi / 180.0;
@@ -232,34 +372,21 @@ SpectrumSettings parse_spectrum(const Section& spectrum, const Section* spreadin
   s.peak_frequency = spectrum.optional_number("peak_omega", -big, big);
   s.sigma_low = spectrum.optional_number("sigma_low", -big, big);
   s.sigma_high = spectrum.optional_number("sigma_high", -big, big);
-  const std::string pm = spectrum.text("pm_wind", "u10");
-  if (pm != "u10" && pm != "u19.5") {
-    throw SceneError(spectrum.where("pm_wind"), "expected u10 or u19.5; got '" + pm + "'");
-  }
-  s.pm_wind = pm == "u10" ? PiersonMoskowitzWind::u10 : PiersonMoskowitzWind::u19_5;
-  const std::string tma = spectrum.text("tma_attenuation", "exact");
-  if (tma != "exact" && tma != "thompson-vincent") {
-    throw SceneError(spectrum.where("tma_attenuation"),
-                     "expected exact or thompson-vincent; got '" + tma + "'");
-  }
-  s.depth_attenuation =
-      tma == "exact" ? DepthAttenuation::exact : DepthAttenuation::thompson_vincent;
+  s.pm_wind = choice(spectrum, "pm_wind", kPiersonMoskowitzWinds, "u10");
+  s.depth_attenuation = choice(spectrum, "tma_attenuation", kDepthAttenuations, "exact");
   s.phillips_suppression =
       spectrum.number("phillips_suppression", s.phillips_suppression, -big, big);
   s.allow_extrapolation = spectrum.boolean("allow_extrapolation", false);
   if (spreading != nullptr) {
     if (spreading->has("model")) {
-      s.spreading = choice<SpreadingModel>(
-          *spreading, "model", parse_spreading_model, "",
-          "cos2, cos4, mitsuyasu, hasselmann, mastin, gamper, donelan, donelan-banner, unified");
+      s.spreading = choice(*spreading, "model", kSpreadingModels, "");
     }
     s.swell = spreading->number("swell", s.swell, -big, big);
     s.spread_blend = spreading->number("spread_blend", s.spread_blend, -big, big);
     s.printed_spreading = spreading->boolean("printed", false);
   }
   if (waves.has("dispersion")) {
-    s.dispersion = choice<DispersionKind>(waves, "dispersion", parse_dispersion, "",
-                                          "deep, finite-depth, capillary");
+    s.dispersion = choice(waves, "dispersion", kDispersionKinds, "");
   }
   return s;
 }
@@ -273,19 +400,14 @@ std::vector<double> parse_sizes(const Section& waves) {
     }
     const json& list = c.at("sizes");
     if (!list.is_array() || list.empty() || list.size() > 16) {
-      throw SceneError(c.where("sizes"), "expected an array of 1 to 16 sizes in metres");
+      throw SceneError(
+          c.where("sizes"),
+          "expected an array of 1 to 16 sizes in [0.01, 1000000] m, got " + describe(list));
     }
     std::vector<double> sizes;
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string p = c.where("sizes") + "[" + std::to_string(i) + "]";
-      if (!list[i].is_number() || !std::isfinite(list[i].get<double>())) {
-        throw SceneError(p, "expected a finite number");
-      }
-      const double v = list[i].get<double>();
-      if (!(v >= 0.01 && v <= 1e6)) {
-        throw SceneError(p, "must be in [0.01, 1e+06] m, got " + shortest(v));
-      }
-      sizes.push_back(v);
+      sizes.push_back(checked_number(list[i], p, 0.01, 1e6, " m"));
     }
     return sizes;
   }
@@ -296,7 +418,7 @@ std::vector<double> parse_sizes(const Section& waves) {
     throw SceneError(c.where("factor"),
                      "expected golden-large (f = 1/phi) or golden-small "
                      "(f = 1 - 1/phi); got '" +
-                         factor + "'");
+                         escape_value(factor) + "'");
   }
   return golden_ratio_sizes(largest, count,
                             factor == "golden-large" ? GoldenFactor::large : GoldenFactor::small);
@@ -304,9 +426,9 @@ std::vector<double> parse_sizes(const Section& waves) {
 
 std::vector<double> parse_choppiness(const Section& waves, std::size_t count, bool allow_positive) {
   const double hi = allow_positive ? 10.0 : 0.0;
-  const auto check = [&](double u, const std::string& p) {
-    if (!std::isfinite(u)) throw SceneError(p, "expected a finite number");
-    if (u < -10.0 || u > hi) {
+  const auto check = [&](const json& value, const std::string& p) {
+    const double u = checked_number(value, p, -10.0, 10.0, "");
+    if (u > hi) {
       throw SceneError(p,
                        "must be in [-10, " + shortest(hi) + "], got " + shortest(u) +
                            (allow_positive ? ""
@@ -319,18 +441,18 @@ std::vector<double> parse_choppiness(const Section& waves, std::size_t count, bo
   if (!waves.has("choppiness")) return std::vector<double>(count, 0.0);
   const json& v = waves.at("choppiness");
   if (v.is_number()) {
-    return std::vector<double>(count, check(v.get<double>(), waves.where("choppiness")));
+    return std::vector<double>(count, check(v, waves.where("choppiness")));
   }
   if (!v.is_array() || v.size() != count) {
     throw SceneError(waves.where("choppiness"),
                      "expected a number or an array with one number per cascade (" +
-                         std::to_string(count) + ")");
+                         std::to_string(count) + ") in [-10, " + shortest(hi) + "], got " +
+                         describe(v));
   }
   std::vector<double> u;
   for (std::size_t i = 0; i < count; ++i) {
     const std::string p = waves.where("choppiness") + "[" + std::to_string(i) + "]";
-    if (!v[i].is_number()) throw SceneError(p, "expected a number");
-    u.push_back(check(v[i].get<double>(), p));
+    u.push_back(check(v[i], p));
   }
   return u;
 }
@@ -346,19 +468,14 @@ double wave_memory(const WaveSettings& w) {
 glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, double limit) {
   if (!s.has(key)) return fallback;
   const json& v = s.at(key);
-  if (!v.is_array() || v.size() != 3) throw SceneError(s.where(key), "expected [x, y, z]");
+  if (!v.is_array() || v.size() != 3) {
+    throw SceneError(s.where(key), "expected [x, y, z], each in [-" + shortest(limit) + ", " +
+                                       shortest(limit) + "], got " + describe(v));
+  }
   glm::dvec3 out;
   for (std::size_t i = 0; i < 3; ++i) {
     const std::string p = s.where(key) + "[" + std::to_string(i) + "]";
-    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) {
-      throw SceneError(p, "expected a finite number");
-    }
-    const double x = v[i].get<double>();
-    if (std::fabs(x) > limit) {
-      throw SceneError(
-          p, "must be in [-" + shortest(limit) + ", " + shortest(limit) + "], got " + shortest(x));
-    }
-    out[static_cast<glm::length_t>(i)] = x;
+    out[static_cast<glm::length_t>(i)] = checked_number(v[i], p, -limit, limit, "");
   }
   return out;
 }
@@ -388,21 +505,9 @@ void parse_rendering(const Section& top, Scene& scene) {
   h.sky = shading.boolean("sky", true);
   h.sea = shading.boolean("sea", true);
   h.whitecaps = shading.boolean("whitecaps", false);
-  const std::string fresnel = shading.text("fresnel", "exact");
-  if (fresnel != "exact" && fresnel != "schlick") {
-    throw SceneError("shading.fresnel", "expected exact or schlick; got '" + fresnel + "'");
-  }
-  h.brdf.fresnel = fresnel == "exact" ? FresnelForm::exact : FresnelForm::schlick;
-  const std::string erfc = shading.text("erfc", "exact");
-  if (erfc != "exact" && erfc != "rational") {
-    throw SceneError("shading.erfc", "expected exact or rational; got '" + erfc + "'");
-  }
-  h.brdf.erfc = erfc == "exact" ? ErfcForm::exact : ErfcForm::rational;
-  const std::string accuracy = shading.text("accuracy", "reference");
-  if (accuracy != "reference" && accuracy != "fast") {
-    throw SceneError("shading.accuracy", "expected reference or fast; got '" + accuracy + "'");
-  }
-  h.accuracy = accuracy == "reference" ? LightingAccuracy::reference : LightingAccuracy::fast;
+  h.brdf.fresnel = choice(shading, "fresnel", kShadingFresnelForms, "exact");
+  h.brdf.erfc = choice(shading, "erfc", kErfcForms, "exact");
+  h.accuracy = choice(shading, "accuracy", kLightingAccuracies, "reference");
   // Each setting belongs to one mode: a key of the other is a mistake, not something to ignore.
   const bool fast = h.accuracy == LightingAccuracy::fast;
   for (const char* key : {"sky_order", "sun_order"}) {
@@ -423,34 +528,17 @@ void parse_rendering(const Section& top, Scene& scene) {
   h.sun_order = shading.integer("sun_order", h.sun_order, 0, 64);
   const glm::dvec3 sea =
       vector3(shading, "sea_colour", {h.sea_colour[0], h.sea_colour[1], h.sea_colour[2]}, 1.0);
-  if (sea.x < 0.0 || sea.y < 0.0 || sea.z < 0.0) {
-    throw SceneError("shading.sea_colour", "each component must be in [0, 1]");
+  for (glm::length_t i = 0; i < 3; ++i) {
+    if (sea[i] < 0.0) {
+      throw SceneError("shading.sea_colour[" + std::to_string(i) + "]",
+                       "must be in [0, 1], got " + shortest(sea[i]));
+    }
   }
   h.sea_colour = {sea.x, sea.y, sea.z};
   h.foam_albedo = shading.number("foam_albedo", h.foam_albedo, 0.0, 1.0);
   h.whitecap_threshold = shading.number("whitecap_threshold", h.whitecap_threshold, -10.0, 10.0);
-  const std::string interpolation = shading.text("interpolation", "bicubic");
-  if (interpolation == "bilinear") {
-    h.interpolation = Interpolation::bilinear;
-  } else if (interpolation == "bicubic") {
-    h.interpolation = Interpolation::bicubic;
-  } else if (interpolation == "direct") {
-    h.interpolation = Interpolation::direct;
-  } else {
-    throw SceneError("shading.interpolation",
-                     "expected bilinear, bicubic or direct; got '" + interpolation + "'");
-  }
-  const std::string normals = shading.text("normals", "surface");
-  if (normals == "surface") {
-    h.normals = ShadingNormals::surface;
-  } else if (normals == "high_resolution") {
-    h.normals = ShadingNormals::high_resolution;
-  } else {
-    throw SceneError("shading.normals",
-                     "expected surface (the normal of the rasterized surface) or high_resolution "
-                     "(the slopes of the N_h bands, Gamper 4.4); got '" +
-                         normals + "'");
-  }
+  h.interpolation = choice(shading, "interpolation", kInterpolations, "bicubic");
+  h.normals = choice(shading, "normals", kShadingNormals, "surface");
   const Section render(top.has("render") ? top.at("render") : empty, "render");
   ImageSettings& im = scene.image;
   im.width = render.integer("width", im.width, 1, 16384);
@@ -628,6 +716,26 @@ std::vector<UnusedKey> unused_keys(const json& document, const Scene& scene) {
 }
 }  // namespace
 
+json parse_scene_json(std::string_view text, const std::string& source) {
+  // nlohmann's lexer takes a NUL byte for the end of the input, so "{} \0 garbage" would parse.
+  const std::size_t nul = text.find('\0');
+  if (nul != std::string_view::npos) {
+    const std::size_t line_start = text.rfind('\n', nul);
+    const std::size_t line =
+        1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + nul, '\n'));
+    const std::size_t column = line_start == std::string_view::npos ? nul + 1 : nul - line_start;
+    throw SceneError(source, "not valid JSON: a NUL byte at line " + std::to_string(line) +
+                                 ", column " + std::to_string(column) +
+                                 " (a scene file is UTF-8 JSON text)");
+  }
+  json document;
+  StrictSceneSax sax(document);
+  sax.source_ = source;
+  // Strict: anything after the value but whitespace is a syntax error; no comments.
+  json::sax_parse(text, &sax, json::input_format_t::json, true, false);
+  return document;
+}
+
 Scene parse_scene(const json& document) {
   const ReferenceFpEnvironment fp;
   const Section top(document, "");
@@ -640,7 +748,10 @@ Scene parse_scene(const json& document) {
   Scene scene;
   if (top.has("seed")) {
     const json& s = top.at("seed");
-    if (!s.is_number_unsigned()) throw SceneError("seed", "expected an integer in [0, 2^64 - 1]");
+    if (!s.is_number_unsigned()) {
+      throw SceneError("seed", "expected an integer in [0, 18446744073709551615] (2^64 - 1), got " +
+                                   describe(s));
+    }
     scene.seed = s.get<std::uint64_t>();
   }
   scene.time = top.number("time", 0.0, -1e7, 1e7, " s");
@@ -661,14 +772,7 @@ Scene parse_scene(const json& document) {
   w.choppiness =
       parse_choppiness(waves, w.sizes.size(), waves.boolean("allow_positive_choppiness", false));
   w.band_partitioning = waves.boolean("band_partitioning", true);
-  const std::string realization = waves.text("realization", "gaussian");
-  if (realization != "gaussian" && realization != "mastin") {
-    throw SceneError(waves.where("realization"),
-                     "expected gaussian (Gamper eq. 4.2) or mastin (Mastin 1987 white-noise "
-                     "filter); got '" +
-                         realization + "'");
-  }
-  w.realization = realization == "mastin" ? Realization::mastin : Realization::gaussian;
+  w.realization = choice(waves, "realization", kRealizations, "gaussian");
   if (w.band_partitioning) {
     for (std::size_t i = 1; i < w.sizes.size(); ++i) {
       if (!(w.sizes[i] < w.sizes[i - 1])) {
@@ -733,13 +837,10 @@ Sky scene_sky(const Scene& s) {
 Scene load_scene(const std::string& path, std::ostream* warnings) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path, "cannot open the scene file");
-  json document;
-  try {
-    document = json::parse(in, nullptr, true, false);
-  } catch (const json::exception& e) {  // syntax errors and numbers out of range
-    throw SceneError(path, std::string("not valid JSON: ") + e.what());
-  }
-  Scene scene = parse_scene(document);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(path, "cannot read the scene file");
+  Scene scene = parse_scene(parse_scene_json(text.str(), path));
   if (warnings != nullptr) {
     for (const UnusedKey& u : scene.unused) {
       *warnings << "oceanref: warning: " << path << ": " << u.path

@@ -10,6 +10,7 @@
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -86,6 +87,12 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads);
 
 // The memory cap for wave grids (bytes): scenes whose grids would need more are rejected.
 inline constexpr double kWaveMemoryCap = 8.0 * 1024 * 1024 * 1024;
+
+// Parses scene text strictly (DESIGN.md, "Scene files"): one JSON value and nothing after it but
+// whitespace; no NUL byte anywhere; no key twice in one object; every number finite as a double.
+// Errors are SceneErrors naming the JSON path (e.g. "waves.cascades.sizes[1]") or, for syntax
+// errors, `source` with the line and column; quoted input is escaped (core/format.h escape_value).
+nlohmann::json parse_scene_json(std::string_view text, const std::string& source);
 
 Scene parse_scene(const nlohmann::json& document);
 // Reads and parses a scene file; errors name the file (parse errors) or the JSON path. Each key

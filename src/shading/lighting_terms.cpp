@@ -4,14 +4,11 @@
 #include <numbers>
 
 #include "core/math.h"
+#include "core/vec3.h"
 
 namespace oceanref {
 
 namespace {
-Vec3 scaled(const Vec3& v, double a) {
-  return {a * v[0], a * v[1], a * v[2]};
-}
-
 LightingTerms fast_lighting(const ShadingSettings& sh, const Sky& sky, const FrameLighting& light,
                             const Vec3& view, const SurfaceFrame& frame, SlopeVariance s) {
   LightingTerms t;

@@ -4,8 +4,10 @@
 // renderer and `oceanref brdf`, so both compute the same numbers from the same settings.
 #pragma once
 
+#include <array>
 #include <vector>
 
+#include "core/choice.h"
 #include "shading/ocean_lighting.h"
 #include "shading/reference_lighting.h"
 #include "waves/ocean.h"
@@ -19,6 +21,10 @@ enum class LightingAccuracy {
   reference,  // converged to `tolerance`, with error estimates (shading/reference_lighting.h)
   fast,       // fixed-order rules of `sky_order` and `sun_order` (shading/ocean_lighting.h)
 };
+inline constexpr std::array<Choice<LightingAccuracy>, 2> kLightingAccuracies{{
+    {LightingAccuracy::reference, "reference"},
+    {LightingAccuracy::fast, "fast"},
+}};
 
 struct ShadingSettings {
   bool sun = true;

@@ -6,7 +6,8 @@
 
 #include "core/check.h"
 #include "core/math.h"
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
+#include "core/vec3.h"
 
 namespace oceanref {
 
@@ -14,20 +15,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 const double kSqrtPi = std::sqrt(kPi);
 
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 normalized(const Vec3& v) {
-  const double l = std::sqrt(dot(v, v));
-  return {v[0] / l, v[1] / l, v[2] / l};
-}
-Vec3 combine(double a, const Vec3& u, double b, const Vec3& v, double c, const Vec3& w) {
-  return {a * u[0] + b * v[0] + c * w[0], a * u[1] + b * v[1] + c * w[1],
-          a * u[2] + b * v[2] + c * w[2]};
-}
 // A direction the formulas read as a unit vector (its dot products as cosines); 1e-6 in |d|²
 // admits any rounding of a normalization and catches a vector that was never normalized.
 bool is_unit(const Vec3& d) {
@@ -36,25 +23,26 @@ bool is_unit(const Vec3& d) {
 }  // namespace
 
 SurfaceFrame wind_frame(const Vec3& normal, double wind_angle) {
-  const Vec3 n = normalized(normal);
+  const Vec3 n = normalize(normal);
   const Vec3 wind{math::cos(wind_angle), 0.0, math::sin(wind_angle)};
   Vec3 tx = combine(1.0, wind, -dot(wind, n), n, 0.0, n);
   if (dot(tx, tx) < 1e-20) tx = combine(1.0, Vec3{0.0, 0.0, 1.0}, -n[2], n, 0.0, n);
-  tx = normalized(tx);
+  tx = normalize(tx);
   return {n, tx, cross(n, tx)};
 }
 
 double slope_density(double zeta_x, double zeta_y, SlopeVariance s) {
-  return math::exp(-0.5 * (zeta_x * zeta_x / s.x + zeta_y * zeta_y / s.y)) /
-         (2.0 * kPi * std::sqrt(s.x * s.y));
+  return math::exp(-0.5 * (zeta_x * zeta_x / s.upwind + zeta_y * zeta_y / s.crosswind)) /
+         (2.0 * kPi * std::sqrt(s.upwind * s.crosswind));
 }
 
 double directional_slope_variance(const Vec3& d, const SurfaceFrame& f, SlopeVariance s) {
   const double a = dot(d, f.tangent_x);
   const double b = dot(d, f.tangent_y);
   const double horizontal = a * a + b * b;
-  if (!(horizontal > 0.0)) return 0.5 * (s.x + s.y);  // along N: any azimuth; Λ = 0 there
-  return (s.x * a * a + s.y * b * b) / horizontal;
+  if (!(horizontal > 0.0))
+    return 0.5 * (s.upwind + s.crosswind);  // along N: any azimuth; Λ = 0 there
+  return (s.upwind * a * a + s.crosswind * b * b) / horizontal;
 }
 
 double rational_erfc(double x) {
@@ -109,8 +97,9 @@ double fresnel_reflectance(double cos_i, FresnelForm form) {
 
 ViewTerms view_terms(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, ErfcForm form) {
   OCEANREF_EXPECTS(is_unit(view) && is_unit(f.normal), "view and normal are unit vectors");
-  OCEANREF_EXPECTS(s.x > 0.0 && s.y > 0.0, "slope variances are positive, got " +
-                                               std::to_string(s.x) + ", " + std::to_string(s.y));
+  OCEANREF_EXPECTS(s.upwind > 0.0 && s.crosswind > 0.0, "slope variances are positive, got " +
+                                                            std::to_string(s.upwind) + ", " +
+                                                            std::to_string(s.crosswind));
   ViewTerms v;
   v.cos_theta = dot(view, f.normal);
   v.sigma2 = directional_slope_variance(view, f, s);
@@ -129,7 +118,7 @@ BrdfTerms ocean_brdf(const Vec3& light, const Vec3& view, const ViewTerms& v, co
   const double zl = dot(light, f.normal);
   const double zv = v.cos_theta;
   if (!(zl > 0.0) || !(zv > 0.0)) return t;
-  const Vec3 h = normalized(combine(1.0, light, 1.0, view, 0.0, view));
+  const Vec3 h = normalize(combine(1.0, light, 1.0, view, 0.0, view));
   const double zh = dot(h, f.normal);
   t.zeta_x = dot(h, f.tangent_x) / zh;
   t.zeta_y = dot(h, f.tangent_y) / zh;
@@ -158,8 +147,8 @@ double reflected_sun(const Vec3& sun, double radius, const Vec3& view, const Sur
 }
 
 std::array<Vec3, 2> sun_disk_axes(const Vec3& sun) {
-  const Vec3 u = normalized(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
-                                                    : cross(sun, Vec3{1.0, 0.0, 0.0}));
+  const Vec3 u = normalize(std::fabs(sun[1]) < 0.9 ? cross(sun, Vec3{0.0, 1.0, 0.0})
+                                                   : cross(sun, Vec3{1.0, 0.0, 0.0}));
   return {u, cross(sun, u)};
 }
 
@@ -200,7 +189,7 @@ double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, in
 
 double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
                     const QuadratureRule& g, const BrdfOptions& options) {
-  OCEANREF_EXPECTS(is_unit(view) && s.x >= 0.0 && s.y >= 0.0 && !g.nodes.empty() &&
+  OCEANREF_EXPECTS(is_unit(view) && s.upwind >= 0.0 && s.crosswind >= 0.0 && !g.nodes.empty() &&
                        g.nodes.size() == g.weights.size(),
                    "a unit view, slope variances >= 0 and a Gauss-Hermite rule");
   const double vx = dot(view, f.tangent_x);
@@ -208,19 +197,15 @@ double mean_fresnel(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
   const double vn = dot(view, f.normal);
   double numerator = 0.0;
   double visible = 0.0;
-  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
-    const double zx = std::sqrt(2.0 * s.x) * g.nodes[i];
-    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
-      const double zy = std::sqrt(2.0 * s.y) * g.nodes[j];
-      // Facet normal m ∝ ñ = N − ζ_x T_x − ζ_y T_y; V·ñ its projected area towards V.
-      const double projected = vn - zx * vx - zy * vy;
-      if (!(projected > 0.0)) continue;
-      const double weight = g.weights[i] * g.weights[j] * projected;
-      const double cos_vm = projected / std::sqrt(1.0 + zx * zx + zy * zy);
-      numerator += weight * fresnel_reflectance(cos_vm, options.fresnel);
-      visible += weight;
-    }
-  }
+  for_each_hermite_slope(g, s, [&](double zx, double zy, double w) {
+    // Facet normal m ∝ ñ = N − ζ_x T_x − ζ_y T_y; V·ñ its projected area towards V.
+    const double projected = vn - zx * vx - zy * vy;
+    if (!(projected > 0.0)) return;
+    const double weight = w * projected;
+    const double cos_vm = projected / std::sqrt(1.0 + zx * zx + zy * zy);
+    numerator += weight * fresnel_reflectance(cos_vm, options.fresnel);
+    visible += weight;
+  });
   return visible > 0.0 ? numerator / visible : fresnel_reflectance(0.0, options.fresnel);
 }
 

@@ -5,32 +5,35 @@
 // shaders make (Schlick Fresnel, the rational erfc, the mean-Fresnel fit, the sky lookup in the
 // mirror direction) are options, and their errors are measured (reference/ACCURACY.md).
 //
-// Frame: the mean surface normal N and the wind-aligned tangents T_x (upwind), T_y (crosswind),
-// an orthonormal basis; slopes ζ = (ζ_x, ζ_y) = −(m·T_x, m·T_y)/(m·N) for a facet normal m... here
-// with the sign convention of the demo: ζ_x = h·T_x/h·N for the half vector h.
+// Frame: the mean surface normal N, the wind-aligned tangent T_x (upwind) and T_y = N × T_x
+// (crosswind), an orthonormal basis (wind_frame). Slopes: a facet where the surface rises by
+// ζ = (ζ_x, ζ_y) per unit length along (T_x, T_y) has the normal ñ = N − ζ_x T_x − ζ_y T_y (the
+// sums over slopes: for_each_hermite_slope, ocean_lighting.h, reference_lighting.h). ocean_brdf
+// reports the slope of the facet whose normal is the half vector h with the demo's sign,
+// ζ = (h·T_x, h·T_y)/(h·N), the opposite; p(ζ) is even, so both give the same density.
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <cstddef>
+#include <span>
 #include <vector>
 
-#include "sky/color.h"
-#include "spectrum/quadrature.h"
+#include "core/choice.h"
+#include "core/quadrature.h"
+#include "core/vec3.h"
+#include "spectrum/slope_variance.h"
 
 namespace oceanref {
 
 struct SurfaceFrame {
   Vec3 normal;     // N, unit
   Vec3 tangent_x;  // T_x, unit, ⟂ N (upwind)
-  Vec3 tangent_y;  // T_y = N × T_x... any unit vector ⟂ N and T_x completing the basis
+  Vec3 tangent_y;  // T_y = N × T_x, unit (crosswind)
 };
 // The frame of a normal N with T_x the projection of the wind direction (cos A, 0, sin A) on
 // the plane ⟂ N (+Y up, wind angle A from +X towards +Z).
 SurfaceFrame wind_frame(const Vec3& normal, double wind_angle);
-
-struct SlopeVariance {
-  double x;  // σ_x² upwind
-  double y;  // σ_y² crosswind
-};
 
 // p(ζ) = exp(−½(ζ_x²/σ_x² + ζ_y²/σ_y²)) / (2π σ_x σ_y)  (Bruneton 2010 eq. 4).
 double slope_density(double zeta_x, double zeta_y, SlopeVariance s);
@@ -40,6 +43,10 @@ double slope_density(double zeta_x, double zeta_y, SlopeVariance s);
 double directional_slope_variance(const Vec3& d, const SurfaceFrame& f, SlopeVariance s);
 
 enum class ErfcForm { exact, rational };  // math::erfc, or 2e^{−x²}/(2.319x + √(4 + 1.52x²))
+inline constexpr std::array<Choice<ErfcForm>, 2> kErfcForms{{
+    {ErfcForm::exact, "exact"},
+    {ErfcForm::rational, "rational"},
+}};
 // erfc(x) for x ≥ 0 by the rational approximation of the demo (Bruneton's ocean.glsl).
 double rational_erfc(double x);
 // Smith's Λ for Gaussian slopes: Λ = (e^{−ν²} − ν√π erfc ν)/(2ν√π), ν = cos θ/√(2σ²(1 − cos²θ))
@@ -57,6 +64,14 @@ SmithTerms smith_terms(double cos_theta, double sigma2, ErfcForm form = ErfcForm
 // Exact dielectric, 0.02 + 0.98(1 − cos)^5 (Schlick with the demo's constants), or 1 (a perfect
 // mirror facet: for energy checks).
 enum class FresnelForm { exact, schlick, unity };
+inline constexpr std::array<Choice<FresnelForm>, 3> kFresnelForms{{
+    {FresnelForm::exact, "exact"},
+    {FresnelForm::schlick, "schlick"},
+    {FresnelForm::unity, "unity"},
+}};
+// The forms a scene (shading.fresnel) and `oceanref brdf` offer: unity is for energy checks.
+inline constexpr std::span<const Choice<FresnelForm>, 2> kShadingFresnelForms =
+    std::span(kFresnelForms).first<2>();
 inline constexpr double kWaterRefractiveIndex = 1.333;
 // Unpolarized Fresnel reflectance of an air–water interface (n = 1.333) for cos θ_i ∈ [0, 1]:
 // ½(r_s² + r_p²) with r_s = (cos i − n cos t)/(cos i + n cos t), r_p = (n cos i − cos t)/(n cos i
@@ -118,6 +133,23 @@ std::vector<SunDiskNode> sun_disk_nodes(const Vec3& sun, double sun_radius,
 // Σ weight · f(L, V) cos θ_L over the nodes.
 double reflected_sun(const std::vector<SunDiskNode>& nodes, const Vec3& view,
                      const SurfaceFrame& frame, SlopeVariance s, const BrdfOptions& options = {});
+
+// The Gauss–Hermite product rule over facet slopes: calls facet(ζ_x, ζ_y, w) for every pair
+// (t_i, t_j) of the rule's nodes, i the outer loop, with ζ = (√(2σ_x²)·t_i, √(2σ_y²)·t_j) and
+// w = w_i·w_j. Since p(ζ)dζ = e^{−|t|²}/π dt, Σ w·f(ζ)/π ≈ ∫ f(ζ) p(ζ) dζ. The slope sums of
+// mean_fresnel, reflected_sky and reflected_sky_filtered, in this one order.
+template <class Facet>
+void for_each_hermite_slope(const QuadratureRule& hermite, const SlopeVariance& s,
+                            const Facet& facet) {
+  const std::size_t n = hermite.nodes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double zeta_x = std::sqrt(2.0 * s.upwind) * hermite.nodes[i];
+    for (std::size_t j = 0; j < n; ++j) {
+      const double zeta_y = std::sqrt(2.0 * s.crosswind) * hermite.nodes[j];
+      facet(zeta_x, zeta_y, hermite.weights[i] * hermite.weights[j]);
+    }
+  }
+}
 
 // Mean Fresnel over the visible slopes: F̄ = ∫ F(V·m) ⟨V·ñ⟩₊ p dζ / (cos θ_V (1 + Λ_V)), ñ the
 // unnormalized facet normal, by Gauss–Hermite quadrature of the given order per axis.

@@ -5,13 +5,19 @@
 
 #include "core/check.h"
 #include "core/math.h"
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
+#include "core/vec3.h"
 
 namespace oceanref {
 
 namespace {
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+// The unit normal of the facet of slope ζ: m = (N − ζ_x T_x − ζ_y T_y)/|…|, |…| = √(1 + |ζ|²).
+Vec3 facet_normal(const SurfaceFrame& f, double zx, double zy, double length) {
+  Vec3 m{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    m[k] = (f.normal[k] - zx * f.tangent_x[k] - zy * f.tangent_y[k]) / length;
+  }
+  return m;
 }
 }  // namespace
 
@@ -28,11 +34,9 @@ Vec3 reflected_sky_per_slope(double zx, double zy, const Vec3& view, const ViewT
   if (!(projected > 0.0)) return {0.0, 0.0, 0.0};
   const double length = std::sqrt(1.0 + zx * zx + zy * zy);
   const double cos_vm = projected / length;
+  const Vec3 m = facet_normal(f, zx, zy, length);
   Vec3 light{};  // the mirror of V about m
-  for (std::size_t k = 0; k < 3; ++k) {
-    const double m = (f.normal[k] - zx * f.tangent_x[k] - zy * f.tangent_y[k]) / length;
-    light[k] = 2.0 * cos_vm * m - view[k];
-  }
+  for (std::size_t k = 0; k < 3; ++k) light[k] = 2.0 * cos_vm * m[k] - view[k];
   const double ln = dot(light, f.normal);
   if (!(ln > 0.0)) return {0.0, 0.0, 0.0};
   const double lambda_light =
@@ -51,15 +55,11 @@ Vec3 reflected_sky(const Vec3& view, const SurfaceFrame& f, SlopeVariance s, con
   const ViewTerms v = view_terms(view, f, s, options.erfc);
   if (!(v.cos_theta > 0.0)) return sum;
   // p(ζ)dζ = e^{−|t|²}/π dt with ζ = √(2σ²)·t: the Gauss–Hermite weights over π.
-  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
-    const double zx = std::sqrt(2.0 * s.x) * g.nodes[i];
-    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
-      const double zy = std::sqrt(2.0 * s.y) * g.nodes[j];
-      const Vec3 l = reflected_sky_per_slope(zx, zy, view, v, f, s, sky, options);
-      const double weight = g.weights[i] * g.weights[j] / std::numbers::pi;
-      for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * l[k];
-    }
-  }
+  for_each_hermite_slope(g, s, [&](double zx, double zy, double w) {
+    const Vec3 l = reflected_sky_per_slope(zx, zy, view, v, f, s, sky, options);
+    const double weight = w / std::numbers::pi;
+    for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * l[k];
+  });
   return sum;
 }
 
@@ -80,23 +80,15 @@ Vec3 reflected_sky_filtered(const Vec3& view, const SurfaceFrame& f, SlopeVarian
   Vec3 sum{0.0, 0.0, 0.0};
   if (!(dot(view, f.normal) > 0.0)) return sum;
   const QuadratureRule g = gauss_hermite(order);
-  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
-    const double zx = std::sqrt(2.0 * s.x) * g.nodes[i];
-    for (std::size_t j = 0; j < g.nodes.size(); ++j) {
-      const double zy = std::sqrt(2.0 * s.y) * g.nodes[j];
-      const double length = std::sqrt(1.0 + zx * zx + zy * zy);
-      Vec3 m{};
-      for (std::size_t k = 0; k < 3; ++k) {
-        m[k] = (f.normal[k] - zx * f.tangent_x[k] - zy * f.tangent_y[k]) / length;
-      }
-      const double vm = dot(view, m);
-      Vec3 light{};
-      for (std::size_t k = 0; k < 3; ++k) light[k] = 2.0 * vm * m[k] - view[k];
-      const Vec3 radiance = sky_radiance_rgb(sky, light);  // 0 below the horizon
-      const double weight = g.weights[i] * g.weights[j] / std::numbers::pi;
-      for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * radiance[k];
-    }
-  }
+  for_each_hermite_slope(g, s, [&](double zx, double zy, double w) {
+    const Vec3 m = facet_normal(f, zx, zy, std::sqrt(1.0 + zx * zx + zy * zy));
+    const double vm = dot(view, m);
+    Vec3 light{};
+    for (std::size_t k = 0; k < 3; ++k) light[k] = 2.0 * vm * m[k] - view[k];
+    const Vec3 radiance = sky_radiance_rgb(sky, light);  // 0 below the horizon
+    const double weight = w / std::numbers::pi;
+    for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * radiance[k];
+  });
   const double fresnel = mean_fresnel(view, f, s, order, options);
   for (double& c : sum) c *= fresnel;
   return sum;

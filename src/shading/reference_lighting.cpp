@@ -9,19 +9,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/adaptive_cubature.h"
 #include "core/math.h"
+#include "core/vec3.h"
 #include "shading/ocean_lighting.h"
-#include "spectrum/adaptive_cubature.h"
 
 namespace oceanref {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kT = kSlopeTruncation;
-
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // [lo, hi] split at the Gaussian's scale (t = −2, 0, 2: pieces on which e^{−t²} is smooth
 // enough for one Kronrod rule) and at the given points, ascending.
@@ -88,7 +85,8 @@ double clamp_unit(double x) {
 
 // The integrals are over a Gaussian of slopes: a perfect mirror (σ² = 0) has none.
 void require_roughness(SlopeVariance s) {
-  if (!(s.x > 0.0 && s.y > 0.0 && std::isfinite(s.x) && std::isfinite(s.y))) {
+  if (!(s.upwind > 0.0 && s.crosswind > 0.0 && std::isfinite(s.upwind) &&
+        std::isfinite(s.crosswind))) {
     throw std::invalid_argument("reference lighting: slope variances must be finite and > 0");
   }
 }
@@ -99,8 +97,8 @@ ScalarEstimate mean_fresnel_reference(const Vec3& view, const SurfaceFrame& f, S
   require_roughness(s);
   const double vn = dot(view, f.normal);
   if (!(vn > 0.0)) return {fresnel_reflectance(0.0, options.fresnel), 0.0, 0, true};
-  const double sx = std::sqrt(2.0 * s.x);
-  const double sy = std::sqrt(2.0 * s.y);
+  const double sx = std::sqrt(2.0 * s.upwind);
+  const double sy = std::sqrt(2.0 * s.crosswind);
   // V·ñ = v_n − a·t with a = (s_x v_x, s_y v_y): in the frame u = ê·t, w = ê⊥·t (ê = a/|a|)
   // the visible facets are u < d = v_n/|a|, for every w.
   const double ax = sx * dot(view, f.tangent_x);
@@ -146,8 +144,8 @@ RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& f, Slo
   const ViewTerms v = view_terms(view, f, s, options.erfc);
   if (!(v.cos_theta > 0.0)) return {};
   const double vn = v.cos_theta;
-  const double sx = std::sqrt(2.0 * s.x);
-  const double sy = std::sqrt(2.0 * s.y);
+  const double sx = std::sqrt(2.0 * s.upwind);
+  const double sy = std::sqrt(2.0 * s.crosswind);
   // The horizon: in ζ the circle of centre −v_t/v_n and radius R = 1/v_n; in t an ellipse of
   // centre t₀. The frame u = n̂·t, w = n̂⊥·t with n̂ from t₀ towards the origin puts the
   // boundary nearest to the Gaussian's mass across u, so most chords in w span the Gaussian.
@@ -281,7 +279,7 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
   // checked against brute force along the arc, on and off the sun's azimuth, in the tests. (A
   // variant with breakpoints across the arc's own axes cost more and was no more accurate on
   // the map's sweep.)
-  const double lobe = 2.0 * std::sqrt(std::fmin(s.x, s.y)) / radius;
+  const double lobe = 2.0 * std::sqrt(std::fmin(s.upwind, s.crosswind)) / radius;
   const auto around = [lobe](double centre, double lo, double hi) {
     std::vector<double> b{lo, centre, hi};
     for (double d = lobe; d < hi - lo; d *= 4.0) {

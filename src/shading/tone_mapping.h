@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "sky/color.h"
+#include "core/vec3.h"
 
 namespace oceanref {
 

@@ -4,9 +4,10 @@
 
 #include <array>
 
+#include "core/vec3.h"
+
 namespace oceanref {
 
-using Vec3 = std::array<double, 3>;
 using Matrix3 = std::array<Vec3, 3>;
 
 // X = xY/y, Z = (1 − x − y)Y/y  (CIE 015:2018 §7.3); Y = 0 or y = 0 → black.

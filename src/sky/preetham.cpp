@@ -9,23 +9,20 @@
 
 #include "core/fp_environment.h"
 #include "core/math.h"
+#include "core/quadrature.h"
+#include "core/vec3.h"
 #include "sky/spectral_tables.h"
-#include "spectrum/quadrature.h"
 
 namespace oceanref {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
 
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 // γ, the angle between two unit vectors, accurate also for tiny angles.
 double angle_between(const Vec3& a, const Vec3& b) {
   const Vec3 d{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
   const Vec3 s{a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-  return 2.0 * math::atan2(std::sqrt(dot(d, d)), std::sqrt(dot(s, s)));
+  return 2.0 * math::atan2(length(d), length(s));
 }
 
 double zenith_chromaticity(double t, double theta, const double (&m)[3][4]) {

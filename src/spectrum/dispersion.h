@@ -2,11 +2,19 @@
 // Units: k in rad/m, ω in rad/s, speeds in m/s, depth in m (+∞ for deep water).
 #pragma once
 
+#include <array>
 #include <limits>
+
+#include "core/choice.h"
 
 namespace oceanref {
 
 enum class DispersionKind { deep, finite_depth, capillary };
+inline constexpr std::array<Choice<DispersionKind>, 3> kDispersionKinds{{
+    {DispersionKind::deep, "deep"},
+    {DispersionKind::finite_depth, "finite-depth"},
+    {DispersionKind::capillary, "capillary"},
+}};
 
 // One dispersion relation and its physical constants.
 struct Dispersion {

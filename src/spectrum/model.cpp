@@ -403,66 +403,14 @@ double spreading_integral(const Spectrum& s, double omega) {
   }
 }
 
-namespace {
-constexpr std::array<std::pair<SpectrumModel, std::string_view>, 6> kModelNames{{
-    {SpectrumModel::phillips, "phillips"},
-    {SpectrumModel::pierson_moskowitz, "pierson-moskowitz"},
-    {SpectrumModel::jonswap, "jonswap"},
-    {SpectrumModel::tma, "tma"},
-    {SpectrumModel::donelan, "donelan"},
-    {SpectrumModel::unified, "unified"},
-}};
-constexpr std::array<std::pair<SpreadingModel, std::string_view>, 9> kSpreadingNames{{
-    {SpreadingModel::cos2, "cos2"},
-    {SpreadingModel::cos4, "cos4"},
-    {SpreadingModel::mitsuyasu, "mitsuyasu"},
-    {SpreadingModel::hasselmann, "hasselmann"},
-    {SpreadingModel::mastin, "mastin"},
-    {SpreadingModel::gamper, "gamper"},
-    {SpreadingModel::donelan, "donelan"},
-    {SpreadingModel::donelan_banner, "donelan-banner"},
-    {SpreadingModel::unified, "unified"},
-}};
-constexpr std::array<std::pair<DispersionKind, std::string_view>, 3> kDispersionNames{{
-    {DispersionKind::deep, "deep"},
-    {DispersionKind::finite_depth, "finite-depth"},
-    {DispersionKind::capillary, "capillary"},
-}};
-
-template <typename E, std::size_t N>
-std::string_view name_of(const std::array<std::pair<E, std::string_view>, N>& table, E e) {
-  for (const auto& [value, name] : table) {
-    if (value == e) return name;
-  }
-  return "?";
-}
-template <typename E, std::size_t N>
-std::optional<E> parse(const std::array<std::pair<E, std::string_view>, N>& table,
-                       std::string_view text) {
-  for (const auto& [value, name] : table) {
-    if (name == text) return value;
-  }
-  return std::nullopt;
-}
-}  // namespace
-
 std::string_view to_string(SpectrumModel m) {
-  return name_of(kModelNames, m);
+  return choice_name(kSpectrumModels, m);
 }
 std::string_view to_string(SpreadingModel m) {
-  return name_of(kSpreadingNames, m);
+  return choice_name(kSpreadingModels, m);
 }
 std::string_view to_string(DispersionKind d) {
-  return name_of(kDispersionNames, d);
-}
-std::optional<SpectrumModel> parse_spectrum_model(std::string_view n) {
-  return parse(kModelNames, n);
-}
-std::optional<SpreadingModel> parse_spreading_model(std::string_view n) {
-  return parse(kSpreadingNames, n);
-}
-std::optional<DispersionKind> parse_dispersion(std::string_view n) {
-  return parse(kDispersionNames, n);
+  return choice_name(kDispersionKinds, d);
 }
 
 }  // namespace oceanref

@@ -6,11 +6,14 @@
 //   Θ(k) [m⁴]    two-dimensional wavevector spectrum        (∬Θ dk_x dk_z = m0)
 #pragma once
 
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
+#include "core/choice.h"
+#include "core/errors.h"
 #include "spectrum/dispersion.h"
 #include "spectrum/wavenumber_spectra.h"
 
@@ -31,17 +34,34 @@ enum class SpreadingModel {
 enum class PiersonMoskowitzWind { u10, u19_5 };           // which wind the speed means
 enum class DepthAttenuation { exact, thompson_vincent };  // TMA Φ: eq. 1.9 or eq. 1.10
 
-// A setting out of its valid range. `key` names the setting (snake_case, as in scene files);
-// the message states the accepted range and the value given.
-class SettingError : public std::invalid_argument {
- public:
-  SettingError(std::string key, const std::string& message)
-      : std::invalid_argument(message), key_(std::move(key)) {}
-  const std::string& key() const { return key_; }
-
- private:
-  std::string key_;
-};
+// The names of the choices, as scene files, the command line and the Python module spell them.
+inline constexpr std::array<Choice<SpectrumModel>, 6> kSpectrumModels{{
+    {SpectrumModel::phillips, "phillips"},
+    {SpectrumModel::pierson_moskowitz, "pierson-moskowitz"},
+    {SpectrumModel::jonswap, "jonswap"},
+    {SpectrumModel::tma, "tma"},
+    {SpectrumModel::donelan, "donelan"},
+    {SpectrumModel::unified, "unified"},
+}};
+inline constexpr std::array<Choice<SpreadingModel>, 9> kSpreadingModels{{
+    {SpreadingModel::cos2, "cos2"},
+    {SpreadingModel::cos4, "cos4"},
+    {SpreadingModel::mitsuyasu, "mitsuyasu"},
+    {SpreadingModel::hasselmann, "hasselmann"},
+    {SpreadingModel::mastin, "mastin"},
+    {SpreadingModel::gamper, "gamper"},
+    {SpreadingModel::donelan, "donelan"},
+    {SpreadingModel::donelan_banner, "donelan-banner"},
+    {SpreadingModel::unified, "unified"},
+}};
+inline constexpr std::array<Choice<PiersonMoskowitzWind>, 2> kPiersonMoskowitzWinds{{
+    {PiersonMoskowitzWind::u10, "u10"},
+    {PiersonMoskowitzWind::u19_5, "u19.5"},
+}};
+inline constexpr std::array<Choice<DepthAttenuation>, 2> kDepthAttenuations{{
+    {DepthAttenuation::exact, "exact"},
+    {DepthAttenuation::thompson_vincent, "thompson-vincent"},
+}};
 
 // What a user chooses. Unset optionals take the model's own value.
 struct SpectrumSettings {
@@ -119,11 +139,9 @@ bool is_cos_2s_family(SpreadingModel m);
 SpreadingModel default_spreading(SpectrumModel m);
 DispersionKind default_dispersion(SpectrumModel m);
 
+// The names of kSpectrumModels, kSpreadingModels, kDispersionKinds.
 std::string_view to_string(SpectrumModel m);
 std::string_view to_string(SpreadingModel m);
 std::string_view to_string(DispersionKind d);
-std::optional<SpectrumModel> parse_spectrum_model(std::string_view name);
-std::optional<SpreadingModel> parse_spreading_model(std::string_view name);
-std::optional<DispersionKind> parse_dispersion(std::string_view name);
 
 }  // namespace oceanref

@@ -58,8 +58,8 @@ QuadratureResult zeroth_moment(const Spectrum& s, double k_max,
 
 SpectralMoments spectral_moments(const Spectrum& s, double k_max,
                                  const QuadratureTolerance& tolerance) {
-  if (!(k_max > 0.0 && k_max <= kMaxMomentWavenumber)) {
-    throw std::invalid_argument("spectral_moments: k_max must be in (0, 1e6] rad/m, got " +
+  if (!(k_max > 0.0 && (k_max <= kMaxMomentWavenumber || k_max == HUGE_VAL))) {
+    throw std::invalid_argument("spectral_moments: k_max must be in (0, 1e6] rad/m or inf, got " +
                                 format_number(k_max));
   }
   SpectralMoments m;
@@ -99,10 +99,10 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
   return m;
 }
 
-WindSlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
-                                      const QuadratureTolerance& tolerance) {
+SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
+                                  const QuadratureTolerance& tolerance) {
   OCEANREF_EXPECTS(k_lo >= 0.0, "a band starts at a wavenumber >= 0, got " + std::to_string(k_lo));
-  WindSlopeVariance out;
+  SlopeVariance out;
   if (!(k_hi > k_lo)) return out;
   std::vector<double> b{k_lo};
   for (const double k : wavenumber_breakpoints(s, k_hi)) {

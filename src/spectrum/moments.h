@@ -3,15 +3,17 @@
 //   mss_x = ∬ k_x² Θ dk, mss_z = ∬ k_z² Θ dk, mss = mss_x + mss_z = ∫ k² Ψ dk  (eq. A.1–A.2).
 #pragma once
 
+#include "core/quadrature.h"
 #include "spectrum/model.h"
-#include "spectrum/quadrature.h"
+#include "spectrum/slope_variance.h"
 
 namespace oceanref {
 
 // λ_min = 1.73 cm floor for spectra without capillary physics (Gamper §4.4): k = 2π/λ_min.
 inline constexpr double kDefaultMaxWavenumber = 2.0 * 3.141592653589793 / 0.0173;
-// The largest k_max spectral_moments accepts [rad/m] (a wavelength of 6.3 µm, far beyond every
-// model's capillary range; beyond ~1e150 the integrands' powers of k overflow).
+// The largest finite k_max spectral_moments accepts [rad/m] (a wavelength of 6.3 µm, far beyond
+// every model's capillary range; beyond ~1e150 the integrands' powers of k overflowed and the
+// result fell back silently); k_max = inf is accepted too (integrated on a mapped interval).
 inline constexpr double kMaxMomentWavenumber = 1e6;
 
 struct SpectralMoments {
@@ -41,12 +43,8 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
 // The slope variances of the waves with k_lo ≤ |k| ≤ k_hi along and across the wind:
 // ∫ k² Ψ(k) ∫ cos²(θ − φ) D dθ dk and the same with sin² (Gamper A.1 in the wind frame) — the
 // roughness a renderer leaves to the BRDF (Bruneton 2010 §4). k_hi may be +∞ when it converges.
-struct WindSlopeVariance {
-  double upwind = 0.0;
-  double crosswind = 0.0;
-};
-WindSlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
-                                      const QuadratureTolerance& tolerance = {});
+SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
+                                  const QuadratureTolerance& tolerance = {});
 
 // ∫_{−π}^{π} g(θ) D(k, θ) dθ with θ the absolute direction, split at the wind direction.
 QuadratureResult integrate_over_direction(const Spectrum& s, double k,

@@ -30,10 +30,21 @@ double cos_2s_normalization(double s) {
                    math::lgamma(2.0 * s + 1.0));
 }
 
+// |cos(θ/2)| for any θ: cos(θ/2) towards the wind; behind it (|θ| > π/2, θ wrapped to
+// [−π, π]) sin((π − |θ|)/2) with π − |θ| exact (Sterbenz), π meaning fl(π). So the angle atan2
+// gives a wavevector exactly opposite the wind, fl(π), has |cos(θ/2)| = 0 as the true angle π
+// has; cos(fl(π)/2) = 6.1e-17 left D = Q·(6.1e-17)^{2s} there (≈ 5e-5·Q for s = 0.13) on the
+// upwind axis of every grid whose wind blows along an axis.
+double half_angle_cosine(double theta) {
+  const double t = wrap_angle(theta);
+  if (std::fabs(t) <= 0.5 * kPi) return std::fabs(math::cos(0.5 * t));
+  return math::sin(0.5 * (kPi - std::fabs(t)));
+}
+
 // D = Q(s) |cos(θ/2)|^{2s}, evaluated as exp(ln Q + 2s ln|cos(θ/2)|)  (Gamper eq. 3.57;
 // Alimardanov eq. 2.19; Lutz eq. 27–28; Mastin eq. 4).
 double cos_2s_spreading(double theta, double s) {
-  const double c = std::fabs(math::cos(0.5 * wrap_angle(theta)));
+  const double c = half_angle_cosine(theta);
   if (s == 0.0) return cos_2s_normalization(0.0);
   if (c == 0.0) return 0.0;
   return math::exp((2.0 * s - 1.0) * kLn2 - kLnPi + 2.0 * math::lgamma(s + 1.0) -

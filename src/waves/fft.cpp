@@ -9,6 +9,7 @@
 
 #include "core/check.h"
 #include "core/math.h"
+#include "core/parallel.h"
 
 // KissFFT's twiddle factors from the portable cosine and sine (waves/kissfft_portable.c).
 extern "C" double oceanref_kissfft_cos(double phase) {

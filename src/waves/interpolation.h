@@ -16,11 +16,18 @@
 #include <array>
 #include <vector>
 
+#include "core/choice.h"
+
 namespace oceanref {
 
 // How the cascade grids are read between nodes: bilinear, periodic Catmull–Rom bicubic, or the
 // exact direct summation of every component (slow). All are exact at the nodes.
 enum class Interpolation { bilinear, bicubic, direct };
+inline constexpr std::array<Choice<Interpolation>, 3> kInterpolations{{
+    {Interpolation::bilinear, "bilinear"},
+    {Interpolation::bicubic, "bicubic"},
+    {Interpolation::direct, "direct"},
+}};
 
 // A periodic grid sampled at a world point: exact at nodes, bilinear in between.
 double sample_periodic(const std::vector<double>& grid, int resolution, double size, double x,

@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "core/fp_environment.h"
+#include "core/parallel.h"
 #include "waves/direct_sum.h"
 #include "waves/fft.h"
 #include "waves/mastin.h"

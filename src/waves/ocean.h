@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/choice.h"
 #include "spectrum/model.h"
 #include "waves/cascades.h"
 #include "waves/direct_sum.h"
@@ -18,6 +19,10 @@ namespace oceanref {
 
 // How h0 is drawn: Gaussian amplitudes (Gamper eq. 4.2) or Mastin's filtered white noise.
 enum class Realization { gaussian, mastin };
+inline constexpr std::array<Choice<Realization>, 2> kRealizations{{
+    {Realization::gaussian, "gaussian"},
+    {Realization::mastin, "mastin"},
+}};
 
 struct WaveSettings {
   std::uint64_t seed = 1;

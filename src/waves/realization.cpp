@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "core/math.h"
+#include "core/parallel.h"
 #include "waves/fft.h"
 #include "waves/random.h"
 

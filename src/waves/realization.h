@@ -10,10 +10,11 @@
 //     partner: there the partner stands for the same wave.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
-#include "core/complex.h"
 
+#include "core/complex.h"
 #include "spectrum/model.h"
 #include "waves/cascades.h"
 
@@ -35,18 +36,22 @@ inline std::size_t grid_cells(int n) {
   return grid_offset(0, n, n);
 }
 
+// a → α
 inline int wave_index(int a, int n) {
   return a < n / 2 ? a : a - n;
-}  // a → α
+}
+// α → a
 inline int array_index(int alpha, int n) {
   return alpha < 0 ? alpha + n : alpha;
-}  // α → a
+}
+// The partner a of the conjugate wave (Gamper eq. 4.9).
 inline int conjugate_array_index(int a, int n) {
   return (n - a) % n;
-}  // Gamper eq. 4.9
+}
+// α = −N/2: the Nyquist line.
 inline bool is_nyquist(int alpha, int n) {
   return alpha == -n / 2;
-}  // α = −N/2
+}
 
 // Δk = 2π/L [rad/m]
 double wavenumber_spacing(double size);

@@ -10,9 +10,9 @@
 
 namespace oceanref {
 
-WindSlopeVariance resolved_slope_variance(const PatternSpectrum& s, const std::vector<Complex>& h,
-                                          double wind_direction, Interpolation mode,
-                                          SlopeReading reading) {
+SlopeVariance resolved_slope_variance(const PatternSpectrum& s, const std::vector<Complex>& h,
+                                      double wind_direction, Interpolation mode,
+                                      SlopeReading reading) {
   const int n = s.pattern.resolution;
   OCEANREF_EXPECTS(h.size() == grid_cells(n),
                    "h(k, t) holds N x N entries for N = " + std::to_string(n) + ", got " +
@@ -81,9 +81,9 @@ SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wav
     const SlopeReading reading = normals == ShadingNormals::surface || mode == Interpolation::direct
                                      ? SlopeReading::derivative_of_height
                                      : SlopeReading::interpolated_slopes;
-    const WindSlopeVariance r = resolved_slope_variance(p, h, phi, mode, reading);
-    const WindSlopeVariance d = resolved_slope_variance(p, h, phi, Interpolation::direct,
-                                                        SlopeReading::derivative_of_height);
+    const SlopeVariance r = resolved_slope_variance(p, h, phi, mode, reading);
+    const SlopeVariance d = resolved_slope_variance(p, h, phi, Interpolation::direct,
+                                                    SlopeReading::derivative_of_height);
     b.resolved.upwind += r.upwind;
     b.resolved.crosswind += r.crosswind;
     b.discrete.upwind += d.upwind;
@@ -92,8 +92,8 @@ SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wav
   b.cutoff_wavenumber = std::fmin(b.cutoff_wavenumber, b.floor_wavenumber);
   b.moment = band_slope_variance(ocean.spectrum, 0.0, b.floor_wavenumber);
   b.above_cutoff = band_slope_variance(ocean.spectrum, b.cutoff_wavenumber, b.floor_wavenumber);
-  const auto difference = [](const WindSlopeVariance& x, const WindSlopeVariance& y) {
-    return WindSlopeVariance{x.upwind - y.upwind, x.crosswind - y.crosswind};
+  const auto difference = [](const SlopeVariance& x, const SlopeVariance& y) {
+    return SlopeVariance{x.upwind - y.upwind, x.crosswind - y.crosswind};
   };
   b.interpolation_loss = difference(b.discrete, b.resolved);
   b.sampling = difference(difference(b.moment, b.above_cutoff), b.discrete);

@@ -47,20 +47,20 @@ enum class SlopeReading { derivative_of_height, interpolated_slopes };
 // Σ_k |h|² ŵᵀM(k)ŵ with M_xx = W_xV_z, M_zz = V_xW_z, M_xz = c_xc_z (derivative of the
 // height) or M = d dᵀ V_xV_z with d = d(k, 1) of eq. 4.12 (interpolated slopes); V, W, c the
 // per-axis factors of interpolation.h in physical units (W/Δ², c/Δ).
-WindSlopeVariance resolved_slope_variance(const PatternSpectrum& s, const std::vector<Complex>& h,
-                                          double wind_direction, Interpolation mode,
-                                          SlopeReading reading);
+SlopeVariance resolved_slope_variance(const PatternSpectrum& s, const std::vector<Complex>& h,
+                                      double wind_direction, Interpolation mode,
+                                      SlopeReading reading);
 
 struct SlopeVarianceBudget {
   double cutoff_wavenumber = 0.0;  // largest |k| the shaded bands sample [rad/m]
   double floor_wavenumber = 0.0;   // k_f = 2π/λ_min (or 10·2π/1.73 cm without a floor)
-  WindSlopeVariance moment;        // the spectrum, 0 < |k| ≤ k_f (A.1, wind frame)
-  WindSlopeVariance discrete;      // Σ|h|²(k·ŵ)² of the shaded bands, read exactly
-  WindSlopeVariance resolved;      // the shaded slope field as rendered
-  WindSlopeVariance above_cutoff;
-  WindSlopeVariance interpolation_loss;
-  WindSlopeVariance sampling;
-  WindSlopeVariance unresolved;  // the BRDF's σ²
+  SlopeVariance moment;            // the spectrum, 0 < |k| ≤ k_f (A.1, wind frame)
+  SlopeVariance discrete;          // Σ|h|²(k·ŵ)² of the shaded bands, read exactly
+  SlopeVariance resolved;          // the shaded slope field as rendered
+  SlopeVariance above_cutoff;
+  SlopeVariance interpolation_loss;
+  SlopeVariance sampling;
+  SlopeVariance unresolved;  // the BRDF's σ²
   bool clamped = false;
 };
 

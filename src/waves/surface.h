@@ -15,8 +15,10 @@
 //     normal is not the gradient of the rasterized surface.
 #pragma once
 
+#include <array>
 #include <vector>
 
+#include "core/choice.h"
 #include "waves/direct_sum.h"
 #include "waves/fields.h"
 #include "waves/interpolation.h"
@@ -25,7 +27,13 @@ namespace oceanref {
 
 struct Ocean;
 
+// The shading normal: of the rasterized surface (the N_l bands), or from the slopes of the N_h
+// bands (Gamper 4.4).
 enum class ShadingNormals { surface, high_resolution };
+inline constexpr std::array<Choice<ShadingNormals>, 2> kShadingNormals{{
+    {ShadingNormals::surface, "surface"},
+    {ShadingNormals::high_resolution, "high_resolution"},
+}};
 
 // One cascade's rendered surface at (x, z) from its grids: η, D_x, D_z from the N_l grids by
 // `mode` (bilinear or bicubic) and the exact derivatives of those interpolants (raw slope and

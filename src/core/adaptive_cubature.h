@@ -21,7 +21,7 @@
 #include <span>
 #include <vector>
 
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
 
 namespace oceanref {
 

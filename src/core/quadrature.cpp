@@ -1,4 +1,4 @@
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
 
 #include <algorithm>
 #include <array>
@@ -11,10 +11,10 @@
 #include <tuple>
 #include <utility>
 
+#include "core/adaptive_cubature.h"
 #include "core/double_double.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
-#include "spectrum/adaptive_cubature.h"
 
 namespace oceanref {
 
