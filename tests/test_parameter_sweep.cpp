@@ -24,7 +24,7 @@
 #include "scene/scene.h"
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
-#include "spectrum/quadrature.h"
+#include "core/quadrature.h"
 #include "waves/ocean.h"
 
 using namespace oceanref;
