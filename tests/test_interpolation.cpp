@@ -242,7 +242,8 @@ TEST_CASE("convergence orders on a smooth periodic field: bicubic h^3 / h^2, bil
   for (const auto& [mode, value_order, gradient_order] :
        {std::tuple{Interpolation::bicubic, 3.0, 2.0},
         std::tuple{Interpolation::bilinear, 2.0, 1.0}}) {
-    CAPTURE(static_cast<int>(mode));
+    const int mode_number = static_cast<int>(mode);  // (clang 15 cannot capture a binding)
+    CAPTURE(mode_number);
     std::vector<Errors> e;
     for (const int n : {16, 32, 64, 128, 256}) e.push_back(rms_errors(f, n, mode));
     for (std::size_t i = 2; i + 1 < e.size(); ++i) {

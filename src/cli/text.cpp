@@ -16,22 +16,8 @@
 namespace oceanref::cli {
 
 namespace {
-// The fewest significant digits that read back as `v` (a range reads "[0.1, 1e+30]").
-std::string short_number(double v) {
-  char buffer[40];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-    if (std::strtod(buffer, nullptr) == v) break;
-  }
-  // Whole numbers below 1e15 in plain digits: 1000, not 1e+03.
-  if (std::string_view(buffer).find('e') != std::string_view::npos && v == std::floor(v) &&
-      std::fabs(v) < 1e15) {
-    std::snprintf(buffer, sizeof buffer, "%.0f", v);
-  }
-  return buffer;
-}
 std::string range_text(double lo, double hi, const std::string& unit) {
-  return "[" + short_number(lo) + ", " + short_number(hi) + "]" + unit;
+  return "[" + shortest_number(lo) + ", " + shortest_number(hi) + "]" + unit;
 }
 std::string quote_value(std::string_view text) {
   return "'" + escape_value(text) + "'";

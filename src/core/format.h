@@ -3,8 +3,10 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <string_view>
 
@@ -14,6 +16,22 @@ namespace oceanref {
 inline std::string format_number(double v) {
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+// The fewest significant digits that read back as `v` (0.1, not 0.10000000000000001); whole
+// numbers below 1e15 in plain digits (1000, not 1e+03). For messages: ranges and echoed values.
+inline std::string shortest_number(double v) {
+  if (!std::isfinite(v)) return v > 0 ? "inf" : (v < 0 ? "-inf" : "nan");
+  char buffer[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    if (std::strtod(buffer, nullptr) == v) break;
+  }
+  if (std::string_view(buffer).find('e') != std::string_view::npos && v == std::floor(v) &&
+      std::fabs(v) < 1e15) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", v);
+  }
   return buffer;
 }
 

@@ -206,22 +206,6 @@ std::string join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
-// The fewest significant digits that read back as `v` (0.1, not 0.10000000000000001).
-std::string shortest(double v) {
-  if (!std::isfinite(v)) return v > 0 ? "inf" : (v < 0 ? "-inf" : "nan");
-  char buffer[40];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-    if (std::strtod(buffer, nullptr) == v) break;
-  }
-  // Whole numbers below 1e15 in plain digits: 1000, not 1e+03.
-  if (std::string_view(buffer).find('e') != std::string_view::npos && v == std::floor(v) &&
-      std::fabs(v) < 1e15) {
-    std::snprintf(buffer, sizeof buffer, "%.0f", v);
-  }
-  return buffer;
-}
-
 // The keys of the object at `path` ("" for the top level): the next component of every key path
 // under it, in the order of scene_key_paths(); the top level also holds `objects` (rejected as
 // not supported yet).
@@ -245,15 +229,16 @@ double checked_number(const json& v, const std::string& path, double lo, double 
                       const std::string& unit) {
   const bool ranged = lo > -kTypeOnly || hi < kTypeOnly;
   const std::string range =
-      ranged ? " in [" + shortest(lo) + ", " + shortest(hi) + "]" + unit : std::string();
+      ranged ? " in [" + shortest_number(lo) + ", " + shortest_number(hi) + "]" + unit
+             : std::string();
   if (!v.is_number()) throw SceneError(path, "expected a number" + range + ", got " + describe(v));
   const double x = v.get<double>();
   if (!std::isfinite(x)) {
-    throw SceneError(path, "expected a finite number" + range + ", got " + shortest(x));
+    throw SceneError(path, "expected a finite number" + range + ", got " + shortest_number(x));
   }
   if (x < lo || x > hi) {
-    throw SceneError(path, "must be in [" + shortest(lo) + ", " + shortest(hi) + "]" + unit +
-                               ", got " + shortest(x));
+    throw SceneError(path, "must be in [" + shortest_number(lo) + ", " + shortest_number(hi) + "]" +
+                               unit + ", got " + shortest_number(x));
   }
   return x;
 }
@@ -430,7 +415,7 @@ std::vector<double> parse_choppiness(const Section& waves, std::size_t count, bo
     const double u = checked_number(value, p, -10.0, 10.0, "");
     if (u > hi) {
       throw SceneError(p,
-                       "must be in [-10, " + shortest(hi) + "], got " + shortest(u) +
+                       "must be in [-10, " + shortest_number(hi) + "], got " + shortest_number(u) +
                            (allow_positive ? ""
                                            : " (u > 0 flattens crests instead of sharpening them, "
                                              "Gamper eq. 4.20; set waves.allow_positive_choppiness "
@@ -446,7 +431,7 @@ std::vector<double> parse_choppiness(const Section& waves, std::size_t count, bo
   if (!v.is_array() || v.size() != count) {
     throw SceneError(waves.where("choppiness"),
                      "expected a number or an array with one number per cascade (" +
-                         std::to_string(count) + ") in [-10, " + shortest(hi) + "], got " +
+                         std::to_string(count) + ") in [-10, " + shortest_number(hi) + "], got " +
                          describe(v));
   }
   std::vector<double> u;
@@ -469,8 +454,8 @@ glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, doubl
   if (!s.has(key)) return fallback;
   const json& v = s.at(key);
   if (!v.is_array() || v.size() != 3) {
-    throw SceneError(s.where(key), "expected [x, y, z], each in [-" + shortest(limit) + ", " +
-                                       shortest(limit) + "], got " + describe(v));
+    throw SceneError(s.where(key), "expected [x, y, z], each in [-" + shortest_number(limit) +
+                                       ", " + shortest_number(limit) + "], got " + describe(v));
   }
   glm::dvec3 out;
   for (std::size_t i = 0; i < 3; ++i) {
@@ -531,7 +516,7 @@ void parse_rendering(const Section& top, Scene& scene) {
   for (glm::length_t i = 0; i < 3; ++i) {
     if (sea[i] < 0.0) {
       throw SceneError("shading.sea_colour[" + std::to_string(i) + "]",
-                       "must be in [0, 1], got " + shortest(sea[i]));
+                       "must be in [0, 1], got " + shortest_number(sea[i]));
     }
   }
   h.sea_colour = {sea.x, sea.y, sea.z};
@@ -556,7 +541,7 @@ void parse_rendering(const Section& top, Scene& scene) {
   const double sample_bytes = static_cast<double>(im.width) * im.height * spp * 48.0;
   if (sample_bytes > kWaveMemoryCap) {
     throw SceneError("render", "width x height x samples_per_pixel needs " +
-                                   shortest(std::round(sample_bytes / 1048576.0)) +
+                                   shortest_number(std::round(sample_bytes / 1048576.0)) +
                                    " MiB of samples, over the cap of 8192 MiB");
   }
   try {
@@ -793,7 +778,7 @@ Scene parse_scene(const json& document) {
   const double bytes = wave_memory(w);
   if (bytes > kWaveMemoryCap) {
     throw SceneError("waves.resolution",
-                     "the wave grids would need " + shortest(std::round(bytes / 1048576.0)) +
+                     "the wave grids would need " + shortest_number(std::round(bytes / 1048576.0)) +
                          " MiB, over the cap of 8192 MiB; lower the resolution or the number of "
                          "cascades");
   }
