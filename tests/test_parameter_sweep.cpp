@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "conformance/render_output.h"
+#include "core/quadrature.h"
 #include "scene/scene.h"
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
-#include "core/quadrature.h"
 #include "waves/ocean.h"
 
 using namespace oceanref;
@@ -249,15 +249,6 @@ std::string run_case(const json& document, const std::vector<std::string>& keys)
   return "";
 }
 
-// Cases that fail today, reported (doctest WARN) rather than failed until the parser's ranges
-// are fixed (issue 15 point 2, strict validation: src/scene/scene.cpp is another helper's):
-// a peak frequency within the documented (0, 1e4] but tiny (5e-324 .. ~1e-3 rad/s) passes
-// validation, then the slope-variance/moment quadratures do not converge ("m0 did not converge",
-// `oceanref render` exits 2 with "upwind slope variance did not converge", naming no key).
-bool known_bug(const std::string& label) {
-  return label.rfind("waves.spectrum.peak_omega = ", 0) == 0;
-}
-
 std::vector<Range> documented_ranges() {
   std::ifstream in(OCEANREF_SOURCE_DIR "/reference/scene.schema.json");
   REQUIRE(in);
@@ -289,11 +280,7 @@ TEST_CASE("parameter sweep: every documented range's corners and random points, 
       const std::string label = r.path + (r.index >= 0 ? "[" + std::to_string(r.index) + "]" : "") +
                                 " = " + json(v).dump();
       if (!failure.empty()) {
-        if (known_bug(label)) {
-          WARN_MESSAGE(false, "known bug: ", label, ": ", failure);
-        } else {
-          failures.push_back(label + ": " + failure);
-        }
+        failures.push_back(label + ": " + failure);
       }
       // Count what reached the render (a clean error is also a pass).
       try {

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 
@@ -153,8 +154,9 @@ void read_attributes(const Imf::Header& header, ExrImage& image) {
 
 // An image with the header's attributes and channels (zero-filled) for the given data window,
 // and the frame buffer that reads into it.
+// `budget`: the bytes of pixels the file may still allocate, lowered by this image's.
 ExrImage prepare_image(const Imf::Header& header, const Imath::Box2i& window, bool tiled,
-                       Imf::FrameBuffer& frame) {
+                       Imf::FrameBuffer& frame, double& budget) {
   ExrImage image;
   image.width = window.max.x - window.min.x + 1;
   image.height = window.max.y - window.min.y + 1;
@@ -162,6 +164,19 @@ ExrImage prepare_image(const Imf::Header& header, const Imath::Box2i& window, bo
   image.origin_y = window.min.y;
   if (image.width < 1 || image.height < 1) throw std::runtime_error("empty data window");
   read_attributes(header, image);
+  double bytes = 0.0;
+  int channels = 0;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c, ++channels) {
+    const double sampling = std::max(1, c.channel().xSampling);
+    bytes += static_cast<double>(image.width) * image.height / (sampling * sampling) * 4.0;
+  }
+  if (bytes > budget) {
+    throw MemoryLimitError(std::to_string(image.width) + " x " + std::to_string(image.height) +
+                           " pixels of " + std::to_string(channels) + " channels need " +
+                           mebibytes(bytes) + ", over the " + mebibytes(budget) +
+                           " left of the reading limit (--max-memory)");
+  }
+  budget -= bytes;
   for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
     const int sampling = c.channel().xSampling;
     if (sampling < 1 || c.channel().ySampling != sampling || image.width % sampling != 0 ||
@@ -174,8 +189,9 @@ ExrImage prepare_image(const Imf::Header& header, const Imath::Box2i& window, bo
     }
     image.channels.push_back(
         {c.name(), sampling,
-         std::vector<float>(static_cast<std::size_t>(image.width / sampling) *
-                            static_cast<std::size_t>(image.height / sampling))});
+         allocate_buffer<float>(static_cast<std::size_t>(image.width / sampling) *
+                                    static_cast<std::size_t>(image.height / sampling),
+                                "channel " + std::string(c.name()) + " of an EXR file read")});
   }
   for (ExrChannel& c : image.channels) {
     frame.insert(c.name, float_slice(c.values.data(), window, c.sampling));
@@ -187,7 +203,8 @@ std::string part_label(const Imf::Header& header, int index) {
   return "part " + std::to_string(index) + (header.hasName() ? " '" + header.name() + "'" : "");
 }
 
-void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& out) {
+void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& out,
+               double& budget) {
   const Imf::Header& header = file.header(index);
   const std::string name = header.hasName() ? header.name() : "";
   try {
@@ -199,7 +216,7 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
       Imf::InputPart part(file, index);
       Imf::FrameBuffer frame;
       const Imath::Box2i window = header.dataWindow();
-      ExrPart p{name, 0, 0, prepare_image(header, window, false, frame)};
+      ExrPart p{name, 0, 0, prepare_image(header, window, false, frame, budget)};
       part.setFrameBuffer(frame);
       part.readPixels(window.min.y, window.max.y);
       out.push_back(std::move(p));
@@ -215,7 +232,7 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
         const int level_y = ripmap ? ly : lx;
         Imf::FrameBuffer frame;
         const Imath::Box2i window = part.dataWindowForLevel(lx, level_y);
-        ExrPart p{name, lx, level_y, prepare_image(header, window, true, frame)};
+        ExrPart p{name, lx, level_y, prepare_image(header, window, true, frame, budget)};
         part.setFrameBuffer(frame);
         part.readTiles(0, part.numXTiles(lx) - 1, 0, part.numYTiles(level_y) - 1, lx, level_y);
         out.push_back(std::move(p));
@@ -228,6 +245,16 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
 
 std::runtime_error read_error(const std::string& path, const std::string& what) {
   return std::runtime_error(path + ": cannot read the EXR file: " + what);
+}
+
+// OpenEXR checks a header's data window and tile size against process-wide maxima before it
+// allocates its offset tables; set them once (call_once: readers may run on several threads).
+void limit_openexr_image_size() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    Imf::Header::setMaxImageSize(kMaxExrSide, kMaxExrSide);
+    Imf::Header::setMaxTileSize(kMaxExrSide, kMaxExrSide);
+  });
 }
 
 void check_readable(const std::string& path) {
@@ -295,8 +322,9 @@ void write_exr_parts(const std::string& path, const std::vector<ExrPart>& parts)
   });
 }
 
-ExrImage read_exr(const std::string& path) {
+ExrImage read_exr(const std::string& path, double max_bytes) {
   check_readable(path);
+  limit_openexr_image_size();
   try {
     Imf::MultiPartInputFile file(path.c_str());
     if (file.parts() != 1) {
@@ -304,19 +332,20 @@ ExrImage read_exr(const std::string& path) {
                                " parts; read multi-part files with read_exr_parts");
     }
     std::vector<ExrPart> parts;
-    read_part(file, 0, parts);
+    read_part(file, 0, parts, max_bytes);
     return std::move(parts.front().image);  // level 0 of a tiled file
   } catch (const std::exception& e) {
     throw read_error(path, e.what());
   }
 }
 
-std::vector<ExrPart> read_exr_parts(const std::string& path) {
+std::vector<ExrPart> read_exr_parts(const std::string& path, double max_bytes) {
   check_readable(path);
+  limit_openexr_image_size();
   try {
     Imf::MultiPartInputFile file(path.c_str());
     std::vector<ExrPart> parts;
-    for (int i = 0; i < file.parts(); ++i) read_part(file, i, parts);
+    for (int i = 0; i < file.parts(); ++i) read_part(file, i, parts, max_bytes);
     return parts;
   } catch (const std::exception& e) {
     throw read_error(path, e.what());

@@ -22,12 +22,12 @@ void scene_entry(const std::uint8_t* data, std::size_t size);
 // brdf). Arguments that would write a file (sky -o/--output, --size) make the input a no-op.
 void cli_entry(const std::uint8_t* data, std::size_t size);
 // An EXR file as `oceanref compare` reads it: read_parts_for_compare (and read_exr) on the bytes
-// written to a temporary file, then the file compared with itself. Images are capped at
-// kMaxFuzzPixels pixels (OpenEXR's setMaxImageSize/setMaxTileSize) so that a header claiming a
-// huge image is a clean error, not an out-of-memory "crash".
+// written to a temporary file, then the file compared with itself. The readers' memory limit is
+// kMaxFuzzPixelBytes, so that a header claiming a huge image is a clean error (as it is for
+// `compare --max-memory`), and each input stays fast.
 void exr_entry(const std::uint8_t* data, std::size_t size);
 
-inline constexpr int kMaxFuzzPixels = 1 << 20;
+inline constexpr double kMaxFuzzPixelBytes = 16.0 * 1024 * 1024;
 
 // The entry of a target by name ("scene", "cli", "exr"); nullptr for another name.
 using Entry = void (*)(const std::uint8_t*, std::size_t);
