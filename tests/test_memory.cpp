@@ -4,10 +4,13 @@
 #include <doctest/doctest.h>
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "conformance/render_output.h"
 #include "core/memory.h"
+#include "scene/scene.h"
 #include "waves/ocean.h"
 
 using namespace oceanref;
@@ -79,4 +82,22 @@ TEST_CASE("memory: the wave-grid estimate covers what a realized ocean holds") {
   // only), so it lies above what stays held, but within a factor of 2.5 (2.33 here).
   CHECK(estimate >= held);
   CHECK(estimate <= 2.5 * held);
+}
+
+TEST_CASE("memory: render_scene refuses a scene over the limit before it allocates") {
+  // Eight 8192² cascades: 160 B per cell of two grids each, 160 GiB of wave grids. The check
+  // comes first, so the test allocates nothing large (and finishes at once).
+  const Scene scene = parse_scene(nlohmann::json::parse(R"({"waves": {"resolution": 8192,
+      "cascades": {"sizes": [900, 500, 300, 200, 100, 50, 20, 10]}}})"));
+  CHECK(render_memory_estimate(scene, {}).items.front().bytes == 8.0 * 2 * 8192.0 * 8192 * 160);
+  std::string message;
+  try {
+    (void)render_scene(scene, RenderOutputOptions{});
+  } catch (const MemoryLimitError& e) {
+    message = e.what();
+  }
+  CHECK(message.rfind("needs an estimated 163", 0) == 0);
+  CHECK(message.find("(largest: wave grids 163840 MiB,") != std::string::npos);
+  CHECK(message.find("over the limit of 8192 MiB; raise it with --max-memory") !=
+        std::string::npos);
 }
