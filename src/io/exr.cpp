@@ -1,5 +1,6 @@
 #include "io/exr.h"
 
+#include "core/format.h"
 #include "io/output_file.h"
 
 #include <ImfChannelList.h>
@@ -20,6 +21,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <mutex>
 #include <set>
@@ -152,11 +154,62 @@ void read_attributes(const Imf::Header& header, ExrImage& image) {
   }
 }
 
-// An image with the header's attributes and channels (zero-filled) for the given data window,
-// and the frame buffer that reads into it.
-// `budget`: the bytes of pixels the file may still allocate, lowered by this image's.
+// Bytes of `lines` rows of `width` pixels of every channel of `header` as floats.
+double channel_bytes(const Imf::Header& header, double width, double lines) {
+  double bytes = 0.0;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
+    const double sampling = std::max(1, c.channel().xSampling);
+    bytes += width * lines / (sampling * sampling) * sizeof(float);
+  }
+  return bytes;
+}
+
+// Rows per compressed block of a scanline file: OpenEXR buffers one block.
+double rows_per_block(Imf::Compression c) {
+  switch (c) {
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION:
+      return 16.0;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION:
+      return 32.0;
+    case Imf::DWAB_COMPRESSION:
+      return 256.0;
+    default:  // none, RLE, ZIPS
+      return 1.0;
+  }
+}
+
+// Takes `bytes` from the reading budget (the bytes the file may still allocate), or refuses.
+void reserve(double& budget, double bytes, const std::string& what) {
+  if (bytes > budget) {
+    throw MemoryLimitError(what + " need " + mebibytes(bytes) + ", over the " + mebibytes(budget) +
+                           " left of the reading limit (--max-memory)");
+  }
+  budget -= bytes;
+}
+
+std::string size_text(const Imf::Header& header, const Imath::Box2i& window) {
+  int channels = 0;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c) ++channels;
+  return std::to_string(static_cast<long long>(window.max.x) - window.min.x + 1) + " x " +
+         std::to_string(static_cast<long long>(window.max.y) - window.min.y + 1) + " pixels of " +
+         std::to_string(channels) + " channels";
+}
+
+// Reserves an image's pixels before OpenEXR or this reader allocates anything for it.
+void reserve_image(double& budget, const Imf::Header& header, const Imath::Box2i& window) {
+  const double width = static_cast<double>(window.max.x) - window.min.x + 1.0;
+  const double height = static_cast<double>(window.max.y) - window.min.y + 1.0;
+  reserve(budget, channel_bytes(header, width, height), size_text(header, window));
+}
+
+// An image with the header's attributes and channels (zero-filled) for the given data window
+// (its pixels reserved: reserve_image), and the frame buffer that reads into it.
 ExrImage prepare_image(const Imf::Header& header, const Imath::Box2i& window, bool tiled,
-                       Imf::FrameBuffer& frame, double& budget) {
+                       Imf::FrameBuffer& frame) {
   ExrImage image;
   image.width = window.max.x - window.min.x + 1;
   image.height = window.max.y - window.min.y + 1;
@@ -164,19 +217,6 @@ ExrImage prepare_image(const Imf::Header& header, const Imath::Box2i& window, bo
   image.origin_y = window.min.y;
   if (image.width < 1 || image.height < 1) throw std::runtime_error("empty data window");
   read_attributes(header, image);
-  double bytes = 0.0;
-  int channels = 0;
-  for (auto c = header.channels().begin(); c != header.channels().end(); ++c, ++channels) {
-    const double sampling = std::max(1, c.channel().xSampling);
-    bytes += static_cast<double>(image.width) * image.height / (sampling * sampling) * 4.0;
-  }
-  if (bytes > budget) {
-    throw MemoryLimitError(std::to_string(image.width) + " x " + std::to_string(image.height) +
-                           " pixels of " + std::to_string(channels) + " channels need " +
-                           mebibytes(bytes) + ", over the " + mebibytes(budget) +
-                           " left of the reading limit (--max-memory)");
-  }
-  budget -= bytes;
   for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
     const int sampling = c.channel().xSampling;
     if (sampling < 1 || c.channel().ySampling != sampling || image.width % sampling != 0 ||
@@ -212,16 +252,29 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
       throw std::runtime_error("deep data (" + header.type() +
                                ") is not supported: only flat images are read");
     }
+    const Imath::Box2i data = header.dataWindow();
+    const double width = static_cast<double>(data.max.x) - data.min.x + 1.0;
     if (!header.hasTileDescription()) {
+      // OpenEXR's line buffer (one compressed block of rows), released once the part is read.
+      const double line_buffer = channel_bytes(header, width, rows_per_block(header.compression()));
+      reserve(budget, line_buffer, "the line buffer of " + size_text(header, data));
+      reserve_image(budget, header, data);
       Imf::InputPart part(file, index);
       Imf::FrameBuffer frame;
       const Imath::Box2i window = header.dataWindow();
-      ExrPart p{name, 0, 0, prepare_image(header, window, false, frame, budget)};
+      ExrPart p{name, 0, 0, prepare_image(header, window, false, frame)};
       part.setFrameBuffer(frame);
       part.readPixels(window.min.y, window.max.y);
       out.push_back(std::move(p));
+      budget += line_buffer;
       return;
     }
+    // OpenEXR's tile buffers (two tiles), released once the part is read.
+    const Imf::TileDescription tile = header.tileDescription();
+    const double tile_buffers = 2.0 * channel_bytes(header, tile.xSize, tile.ySize);
+    reserve(budget, tile_buffers,
+            "the tile buffers of " + std::to_string(tile.xSize) + " x " +
+                std::to_string(tile.ySize) + " tiles");
     Imf::TiledInputPart part(file, index);
     // ONE_LEVEL: 1 × 1 levels; MIPMAP_LEVELS: (l, l); RIPMAP_LEVELS: every (lx, ly).
     const bool ripmap = part.levelMode() == Imf::RIPMAP_LEVELS;
@@ -232,12 +285,14 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
         const int level_y = ripmap ? ly : lx;
         Imf::FrameBuffer frame;
         const Imath::Box2i window = part.dataWindowForLevel(lx, level_y);
-        ExrPart p{name, lx, level_y, prepare_image(header, window, true, frame, budget)};
+        reserve_image(budget, header, window);
+        ExrPart p{name, lx, level_y, prepare_image(header, window, true, frame)};
         part.setFrameBuffer(frame);
         part.readTiles(0, part.numXTiles(lx) - 1, 0, part.numYTiles(level_y) - 1, lx, level_y);
         out.push_back(std::move(p));
       }
     }
+    budget += tile_buffers;
   } catch (const std::exception& e) {
     throw std::runtime_error(part_label(header, index) + ": " + e.what());
   }
@@ -255,6 +310,56 @@ void limit_openexr_image_size() {
     Imf::Header::setMaxImageSize(kMaxExrSide, kMaxExrSide);
     Imf::Header::setMaxTileSize(kMaxExrSide, kMaxExrSide);
   });
+}
+
+// OpenEXR allocates each header attribute's claimed size before it reads the value (a 1 KB file
+// can claim a 2 GB attribute). Walk the headers first (magic, version flags, then per header
+// name\0 type\0 int32-size value..., an empty name ending it; multi-part files have several
+// headers and an empty one at the end) and refuse sizes the file cannot hold. Anything else
+// malformed is left to OpenEXR's own checks.
+void check_attribute_sizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const std::streamoff file_size = in.tellg();
+  in.seekg(0);
+  unsigned char start[8] = {};
+  if (!in.read(reinterpret_cast<char*>(start), 8)) return;
+  if (start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 || start[3] != 0x01) return;
+  const bool long_names = (start[5] & 0x04) != 0;  // version flags: bit 10
+  const bool multipart = (start[5] & 0x10) != 0;   // bit 12
+  const std::size_t max_name = long_names ? 255 : 31;
+  const auto read_name = [&](std::string& name) {
+    name.clear();
+    for (char c = 0; in.get(c);) {
+      if (c == '\0') return true;
+      if (name.size() == max_name) return false;
+      name.push_back(c);
+    }
+    return false;
+  };
+  std::string name, type;
+  for (int header = 0;; ++header) {
+    if (multipart && header > 0 && in.peek() == 0) return;  // the empty header ends the list
+    while (true) {
+      if (!read_name(name)) return;
+      if (name.empty()) break;  // the end of this header
+      unsigned char size_bytes[4] = {};
+      if (!read_name(type) || !in.read(reinterpret_cast<char*>(size_bytes), 4)) return;
+      const std::int32_t size =
+          static_cast<std::int32_t>(static_cast<std::uint32_t>(size_bytes[0]) |
+                                    static_cast<std::uint32_t>(size_bytes[1]) << 8 |
+                                    static_cast<std::uint32_t>(size_bytes[2]) << 16 |
+                                    static_cast<std::uint32_t>(size_bytes[3]) << 24);
+      const std::streamoff left = file_size - in.tellg();
+      if (size < 0 || size > left) {
+        throw std::runtime_error("header attribute " + escape_value(name) + " claims " +
+                                 std::to_string(size) + " bytes, but only " + std::to_string(left) +
+                                 " bytes of the file follow");
+      }
+      in.seekg(size, std::ios::cur);
+    }
+    if (!multipart) return;
+  }
 }
 
 void check_readable(const std::string& path) {
@@ -326,6 +431,7 @@ ExrImage read_exr(const std::string& path, double max_bytes) {
   check_readable(path);
   limit_openexr_image_size();
   try {
+    check_attribute_sizes(path);
     Imf::MultiPartInputFile file(path.c_str());
     if (file.parts() != 1) {
       throw std::runtime_error("it has " + std::to_string(file.parts()) +
@@ -343,6 +449,7 @@ std::vector<ExrPart> read_exr_parts(const std::string& path, double max_bytes) {
   check_readable(path);
   limit_openexr_image_size();
   try {
+    check_attribute_sizes(path);
     Imf::MultiPartInputFile file(path.c_str());
     std::vector<ExrPart> parts;
     for (int i = 0; i < file.parts(); ++i) read_part(file, i, parts, max_bytes);
