@@ -325,9 +325,10 @@ void check_attribute_sizes(const std::string& path) {
   unsigned char start[8] = {};
   if (!in.read(reinterpret_cast<char*>(start), 8)) return;
   if (start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 || start[3] != 0x01) return;
-  const bool long_names = (start[5] & 0x04) != 0;  // version flags: bit 10
-  const bool multipart = (start[5] & 0x10) != 0;   // bit 12
-  const std::size_t max_name = long_names ? 255 : 31;
+  const bool multipart = (start[5] & 0x10) != 0;  // version flags: bit 12
+  // OpenEXR reads names of up to 255 bytes whether or not the long-names flag is set (a 32-byte
+  // name in a short-names file once stopped this walk early; the fuzzer found it).
+  const std::size_t max_name = 255;
   const auto read_name = [&](std::string& name) {
     name.clear();
     for (char c = 0; in.get(c);) {
