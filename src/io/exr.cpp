@@ -312,12 +312,92 @@ void limit_openexr_image_size() {
   });
 }
 
+// A little-endian 32-bit integer at the stream's position.
+bool read_int32(std::istream& in, std::int32_t& value) {
+  unsigned char b[4] = {};
+  if (!in.read(reinterpret_cast<char*>(b), 4)) return false;
+  value = static_cast<std::int32_t>(
+      static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
+      static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24);
+  return true;
+}
+
+// A NUL-terminated name of at most 255 bytes (OpenEXR reads that many whether or not the
+// long-names flag is set).
+bool read_name(std::istream& in, std::string& name) {
+  name.clear();
+  for (char c = 0; in.get(c);) {
+    if (c == '\0') return true;
+    if (name.size() == 255) return false;
+    name.push_back(c);
+  }
+  return false;
+}
+
+// The size of each fixed-size attribute type of OpenEXR 3.1: it reads that many bytes whatever
+// size the header declares.
+std::int32_t fixed_size(const std::string& type) {
+  static const std::map<std::string, std::int32_t> sizes{
+      {"box2i", 16},    {"box2f", 16},   {"int", 4},      {"float", 4},
+      {"double", 8},    {"v2i", 8},      {"v2f", 8},      {"v2d", 16},
+      {"v3i", 12},      {"v3f", 12},     {"v3d", 24},     {"m33f", 36},
+      {"m33d", 72},     {"m44f", 64},    {"m44d", 128},   {"compression", 1},
+      {"lineOrder", 1}, {"envmap", 1},   {"tiledesc", 9}, {"chromaticities", 32},
+      {"rational", 8},  {"keycode", 28}, {"timecode", 8}, {"deepImageState", 1}};
+  const auto it = sizes.find(type);
+  return it == sizes.end() ? -1 : it->second;
+}
+
+// The bytes OpenEXR reads for one attribute value must be the `size` the header declares:
+// otherwise its reading and this walk part ways, and OpenEXR allocates from misread bytes.
+// Fixed-size types must declare their size; a channel list runs to its empty name; a preview
+// holds 8 + 4·width·height bytes; a string vector's lengths stay inside the value.
+void check_attribute_value(std::istream& in, const std::string& type, std::int32_t size) {
+  const std::int32_t fixed = fixed_size(type);
+  if (fixed >= 0 && size != fixed) {
+    throw std::runtime_error("declares " + std::to_string(size) + " bytes; a " + type + " has " +
+                             std::to_string(fixed));
+  }
+  std::int64_t used = 0;
+  if (type == "chlist") {
+    for (std::string channel;;) {
+      if (!read_name(in, channel)) throw std::runtime_error("a channel name is not terminated");
+      used += static_cast<std::int64_t>(channel.size()) + 1;
+      if (channel.empty()) break;
+      used += 16;  // pixel type, pLinear and reserved, x and y sampling
+      if (used > size) break;
+      in.seekg(16, std::ios::cur);
+    }
+  } else if (type == "preview") {
+    std::int32_t width = 0, height = 0;
+    if (!read_int32(in, width) || !read_int32(in, height)) return;
+    used = 8 + 4 * static_cast<std::int64_t>(static_cast<std::uint32_t>(width)) *
+                   static_cast<std::uint32_t>(height);
+  } else if (type == "stringvector") {
+    for (std::int32_t length = 0; used < size; used += length) {
+      if (!read_int32(in, length)) return;
+      used += 4;
+      if (length < 0 || used + length > size) {
+        throw std::runtime_error("holds a string of " + std::to_string(length) +
+                                 " bytes past its end");
+      }
+      in.seekg(length, std::ios::cur);
+    }
+  } else {
+    return;  // strings and other types: OpenEXR reads exactly `size` bytes
+  }
+  if (used != size) {
+    throw std::runtime_error("declares " + std::to_string(size) + " bytes, but its " + type +
+                             " value has " + std::to_string(used));
+  }
+}
+
 // OpenEXR allocates each header attribute's claimed size before it reads the value (a 1 KB file
 // can claim a 2 GB attribute). Walk the headers first (magic, version flags, then per header
 // name\0 type\0 int32-size value..., an empty name ending it; multi-part files have several
-// headers and an empty one at the end) and refuse sizes the file cannot hold. Anything else
-// malformed is left to OpenEXR's own checks.
-void check_attribute_sizes(const std::string& path) {
+// headers and an empty one at the end) and refuse a size the file cannot hold or one the value
+// contradicts (check_attribute_value). Anything else malformed is left to OpenEXR's checks.
+void check_header_sizes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   in.seekg(0, std::ios::end);
   const std::streamoff file_size = in.tellg();
@@ -326,38 +406,29 @@ void check_attribute_sizes(const std::string& path) {
   if (!in.read(reinterpret_cast<char*>(start), 8)) return;
   if (start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 || start[3] != 0x01) return;
   const bool multipart = (start[5] & 0x10) != 0;  // version flags: bit 12
-  // OpenEXR reads names of up to 255 bytes whether or not the long-names flag is set (a 32-byte
-  // name in a short-names file once stopped this walk early; the fuzzer found it).
-  const std::size_t max_name = 255;
-  const auto read_name = [&](std::string& name) {
-    name.clear();
-    for (char c = 0; in.get(c);) {
-      if (c == '\0') return true;
-      if (name.size() == max_name) return false;
-      name.push_back(c);
-    }
-    return false;
-  };
   std::string name, type;
   for (int header = 0;; ++header) {
     if (multipart && header > 0 && in.peek() == 0) return;  // the empty header ends the list
     while (true) {
-      if (!read_name(name)) return;
+      if (!read_name(in, name)) return;
       if (name.empty()) break;  // the end of this header
-      unsigned char size_bytes[4] = {};
-      if (!read_name(type) || !in.read(reinterpret_cast<char*>(size_bytes), 4)) return;
-      const std::int32_t size =
-          static_cast<std::int32_t>(static_cast<std::uint32_t>(size_bytes[0]) |
-                                    static_cast<std::uint32_t>(size_bytes[1]) << 8 |
-                                    static_cast<std::uint32_t>(size_bytes[2]) << 16 |
-                                    static_cast<std::uint32_t>(size_bytes[3]) << 24);
-      const std::streamoff left = file_size - in.tellg();
+      std::int32_t size = 0;
+      if (!read_name(in, type) || !read_int32(in, size)) return;
+      const std::streamoff value = in.tellg();
+      const std::streamoff left = file_size - value;
+      const std::string what =
+          "header attribute " + escape_value(name) + " (" + escape_value(type) + ") ";
       if (size < 0 || size > left) {
-        throw std::runtime_error("header attribute " + escape_value(name) + " claims " +
-                                 std::to_string(size) + " bytes, but only " + std::to_string(left) +
-                                 " bytes of the file follow");
+        throw std::runtime_error(what + "claims " + std::to_string(size) + " bytes, but only " +
+                                 std::to_string(left) + " bytes of the file follow");
       }
-      in.seekg(size, std::ios::cur);
+      try {
+        check_attribute_value(in, type, size);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(what + e.what());
+      }
+      in.clear();
+      in.seekg(value + size);
     }
     if (!multipart) return;
   }
@@ -432,7 +503,7 @@ ExrImage read_exr(const std::string& path, double max_bytes) {
   check_readable(path);
   limit_openexr_image_size();
   try {
-    check_attribute_sizes(path);
+    check_header_sizes(path);
     Imf::MultiPartInputFile file(path.c_str());
     if (file.parts() != 1) {
       throw std::runtime_error("it has " + std::to_string(file.parts()) +
@@ -450,7 +521,7 @@ std::vector<ExrPart> read_exr_parts(const std::string& path, double max_bytes) {
   check_readable(path);
   limit_openexr_image_size();
   try {
-    check_attribute_sizes(path);
+    check_header_sizes(path);
     Imf::MultiPartInputFile file(path.c_str());
     std::vector<ExrPart> parts;
     for (int i = 0; i < file.parts(); ++i) read_part(file, i, parts, max_bytes);
