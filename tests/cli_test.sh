@@ -80,7 +80,7 @@ awk -F, 'NR==2 { exit !($2 > 2.24 && $2 < 2.25) }' "$tmp/out" || fail "PM Hs at 
 # --- bad input: exit 2, one line naming the flag and the range ------------------------------
 expect 2 '--wind-speed.*\[0\.1, 60\]' spectrum --model jonswap --wind-speed 75 --omega 1
 expect 2 '--wind-speed.*finite number' spectrum --model jonswap --wind-speed abc --omega 1
-expect 2 '--fetch.*\[1, 1e\+07\]' spectrum --model pierson-moskowitz --fetch 0.5 --omega 1
+expect 2 '--fetch.*\[1, 10000000\]' spectrum --model pierson-moskowitz --fetch 0.5 --omega 1
 expect 2 '--fetch.*allow-extrapolation' spectrum --model jonswap --fetch 1e6 --omega 1
 expect 0 '' spectrum --model jonswap --fetch 1e6 --allow-extrapolation --omega 1
 expect 2 '--depth.*\[0\.01, inf\]' spectrum --model tma --depth 0.001 --omega 1
@@ -470,6 +470,51 @@ checks=$((checks + 1))
 grep -q $'\x1b' "$tmp/err" && fail "an escape byte of an argument reached stderr"
 expect 2 "The following argument was not expected: \\\\x1B" render "$tmp/scene.json" -o "$tmp/strict.exr" $'\x1b'
 [ -e "$tmp/strict.exr" ] && fail "a rejected command wrote $tmp/strict.exr"
+
+# --- memory: every large buffer estimated, checked before allocating (--max-memory) ----------
+# The estimate is an upper bound of what a render allocates and a close one: the peak resident
+# memory of the process (getrusage of the child, with the ~10 MiB of the program itself) lies
+# between half the estimate and the estimate plus 32 MiB. 1024 x 512 at 4 spp: about 200 MiB.
+cat >"$tmp/memory.json" <<'EOF'
+{"seed": 7, "waves": {"spectrum": {"model": "jonswap"}, "cascades": {"sizes": [200, 20]},
+ "resolution": 128}, "grid": {"columns": 256, "rows": 256},
+ "shading": {"accuracy": "fast", "sky_order": 1, "sun_order": 0},
+ "render": {"width": 1024, "height": 512, "samples_per_pixel": 4}}
+EOF
+# peak_bytes ARGS... : runs oceanref ARGS (stdout to $tmp/peak.out), prints its peak resident bytes.
+peak_bytes() {
+  python3 -c 'import resource, subprocess, sys
+subprocess.run(sys.argv[2:], stdout=open(sys.argv[1], "w"), check=True)
+print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024)' "$tmp/peak.out" "$bin" "$@"
+}
+# check_estimate WHAT ESTIMATE PEAK: peak in [estimate/2, estimate + 32 MiB], estimate > 64 MiB.
+# (AddressSanitizer's shadow memory and quarantine inflate the peak: not compared there.)
+check_estimate() {
+  checks=$((checks + 1))
+  [ -n "${OCEANREF_SANITIZED:-}" ] && return
+  awk -v e="$2" -v p="$3" 'BEGIN { exit !(e > 64 * 1048576 && p <= e + 32 * 1048576 && p >= e / 2) }' ||
+    fail "$1 memory: estimate '$2' B, peak '$3' B (expected the peak in [estimate/2, estimate + 32 MiB])"
+}
+peak=$(peak_bytes render "$tmp/memory.json" --threads 2 -o "$tmp/memory.exr")
+check_estimate render "$(sed -n 's/^memory_estimate_bytes,//p' "$tmp/peak.out")" "$peak"
+# fields: the estimate is in the message of a refused run.
+sed 's/"resolution": 128/"resolution": 256/' "$tmp/memory.json" >"$tmp/memory256.json"
+"$bin" fields "$tmp/memory256.json" -o "$tmp/fields.exr" --max-memory 16M 2>"$tmp/err"
+estimate=$(sed -n 's/^oceanref: needs an estimated \([0-9.]*\) MiB.*/\1/p' "$tmp/err")
+peak=$(peak_bytes fields "$tmp/memory256.json" --threads 2 -o "$tmp/fields.exr")
+check_estimate fields "$(awk -v m="$estimate" 'BEGIN { print m * 1048576 }')" "$peak"
+expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers 104 MiB, sample fragments 80 MiB, radiance hash input 12 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
+[ -e "$tmp/refused.exr" ] && fail "a render refused for memory wrote its output"
+expect 2 "^oceanref: needs an estimated .* MiB of memory \(largest: wave grids .*over the limit of 16 MiB; raise it with --max-memory" fields "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 16M
+expect 2 "^oceanref: CANDIDATE: .*memory.exr: cannot read the EXR file: part 0: 1024 x 512 pixels of 3 channels need 6 MiB, over the 3.8 MiB left of the reading limit \(--max-memory\)" compare "$tmp/memory.exr" "$tmp/memory.exr" --max-memory 16M
+expect 0 'pass, failing pixels 0%' compare "$tmp/memory.exr" "$tmp/memory.exr" --max-memory 32M
+# A header attribute claiming more bytes than the file holds is refused before OpenEXR allocates
+# them (found by the exr fuzzer: a 1.2 KB file made OpenEXR allocate 1.9 GB).
+claims="$source_dir/tests/fuzz/regressions/exr/attribute_claims_2gb.exr"
+expect 2 "^oceanref: CANDIDATE: .*attribute_claims_2gb.exr: cannot read the EXR file: header attribute .* claims [0-9]{9,} bytes, but only [0-9]+ bytes of the file follow$" compare "$claims" "$claims"
+expect 2 "^oceanref: --max-memory: must be in \[16M, 1048576G\]" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 8M
+expect 2 "^oceanref: --max-memory: expected a finite number in \[16M, 1048576G\] .*got '20Q'" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 20Q
+expect 2 "^oceanref: --theta-deg: 1001 frequencies x 1001 directions = 1002001 rows, over the limit of 1000000" spectrum --model jonswap --omega "$(seq -s, 1 1001)" --theta-deg "$(seq -s, 1 1001)"
 
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)

@@ -116,6 +116,26 @@ TEST_CASE("strict parsing: bytes after the value and NUL bytes") {
   CHECK(high.find("last read: '\"seed\": \\xFF'") != std::string::npos);
 }
 
+TEST_CASE("strict parsing: nesting deeper than 64 levels is refused at its path") {
+  // 63 levels deep under "extra" (an unknown key, so only the depth limit can reject it) parse;
+  // 64 do not. Deeper input used to overflow the stack when a message printed the value.
+  const auto nested = [](std::size_t depth) {
+    return R"({"seed": 1, "extra": )" + std::string(depth, '[') + std::string(depth, ']') + "}";
+  };
+  CHECK(scene_error(nested(62)).find("nested more than") == std::string::npos);
+  const std::string deep = scene_error(nested(64));
+  CHECK(deep.find("nested more than 64 objects or arrays deep") != std::string::npos);
+  CHECK(deep.rfind("extra[0][0]", 0) == 0);
+  CHECK(scene_error(nested(100000)) == deep);
+}
+
+TEST_CASE("strict parsing: a peak frequency too small to converge is a range error") {
+  // 5e-324 rad/s used to pass validation and end in "m0 did not converge", naming no key.
+  CHECK(scene_error(with_waves(R"(, "spectrum": {"peak_omega": 5e-324})")) ==
+        "waves.spectrum.peak_omega: must be in [0.0001, 10000] rad/s, got 5e-324");
+  CHECK(scene_error(with_waves(R"(, "spectrum": {"peak_omega": 0.0001})")).empty());
+}
+
 TEST_CASE("strict parsing: numbers that overflow a double name the JSON path") {
   CHECK(scene_error(R"({"waves": {"spectrum": {"wind_speed": 1e309}}})") ==
         "waves.spectrum.wind_speed: the number 1e309 is out of the range of a double (accepted: "

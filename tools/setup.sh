@@ -10,7 +10,7 @@
 set -euo pipefail
 
 build_dir=${1:-build}
-packages=(build-essential cmake ninja-build clang clang-format dpkg-dev
+packages=(build-essential cmake ninja-build clang libclang-rt-dev clang-format dpkg-dev
           libglm-dev libopenexr-dev libtinyobjloader-dev doctest-dev
           nlohmann-json3-dev libcli11-dev libfftw3-dev pkg-config zlib1g-dev libmpfr-dev
           chromium openimageio-tools python3-openimageio openexr python3-jsonschema

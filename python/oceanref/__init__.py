@@ -133,7 +133,7 @@ def fields_sha256(values):
     return _hash_fields(values, "<f4"), _hash_fields(values, "<f8")
 
 
-def render(scene, threads=0, spp=None, aov=False):
+def render(scene, threads=0, spp=None, aov=False, max_memory=8 * 2**30):
     """The reference image of a scene: float64 array (height, width, 3) of linear radiance
     [cd/m² per linear sRGB channel, D65], the values behind ``oceanref render -o``'s R, G, B
     (equal bit for bit after float32 rounding; pixel_sha256 gives the EXR's hash).
@@ -142,8 +142,10 @@ def render(scene, threads=0, spp=None, aov=False):
     every core; the image is identical for any count. With aov=True returns a dict: radiance,
     sun, sky, sea, foam, normal, x0, lighting_error (H, W, 3), depth [m], coverage (H, W),
     unconverged_samples, integrand_evaluations, unresolved_slope_variance (upwind, crosswind).
+    max_memory: bytes; a render whose estimated buffers need more raises RuntimeError (as
+    ``oceanref render --max-memory``).
     """
-    result = _core._render(_scene(scene), threads, spp, aov)
+    result = _core._render(_scene(scene), threads, spp, aov, float(max_memory))
     return result if aov else result["radiance"]
 
 

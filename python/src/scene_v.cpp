@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common.h"
+#include "conformance/render_output.h"
 #include "io/exr.h"
 #include "io/sha256.h"
 #include "scene/scene.h"
@@ -107,7 +108,8 @@ py::array_t<double> scalar_image(const std::vector<double>& v, int width, int he
   return to_array(v, {static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width)});
 }
 
-py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp, bool aov) {
+py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp, bool aov,
+                      double max_memory) {
   const int threads = resolve_threads(threads_arg);
   Scene scene = s.scene;
   if (spp) {
@@ -118,6 +120,13 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
     }
     scene.image.samples_per_axis = axis;
   }
+  if (!(max_memory >= kMinMaxMemory && max_memory <= kMaxMaxMemory)) {
+    throw ArgumentError("max_memory", "must be in [16777216, 1125899906842624] bytes, got " +
+                                          shortest_number(max_memory));
+  }
+  RenderOutputOptions options;
+  options.aov = aov;
+  require_within(render_memory_estimate(scene, options), max_memory, "max_memory=");
   RenderedImage image;
   {
     py::gil_scoped_release release;
@@ -229,7 +238,8 @@ void bind_scene(py::module_& m) {
       },
       py::arg("scene"), py::arg("time") = py::none(), py::arg("threads") = 0);
   m.def("_render", &render_scene, py::arg("scene"), py::arg("threads") = 0,
-        py::arg("spp") = py::none(), py::arg("aov") = false);
+        py::arg("spp") = py::none(), py::arg("aov") = false,
+        py::arg("max_memory") = kDefaultMaxMemory);
   m.def("_read_exr", &read_exr_file, py::arg("path"));
 }
 

@@ -60,3 +60,14 @@ def test_spp_and_aov(tiny):
     assert not np.array_equal(b, a["radiance"])  # the setting reaches the image
     with pytest.raises(ValueError, match=r"^spp: must be a square number in \[1, 256\], got 3"):
         oceanref.render(tiny, spp=3)
+
+
+def test_max_memory_refuses_a_render_before_it_starts(tiny):
+    big = dict(TINY, render={"width": 4096, "height": 4096, "samples_per_pixel": 4})
+    # 4096² pixels at 4 spp: about 6.3 GiB of buffers, over a 1 GiB limit, refused at once.
+    with pytest.raises(RuntimeError, match=r"needs an estimated 64[0-9]{2}(\.[0-9])? MiB .*"
+                                           r"over the limit of 1024 MiB; raise it with max_memory="):
+        oceanref.render(big, max_memory=2**30)
+    with pytest.raises(ValueError, match="max_memory"):
+        oceanref.render(tiny, max_memory=1000)
+    assert oceanref.render(tiny, max_memory=2**24).shape == (24, 40, 3)

@@ -20,9 +20,12 @@
 namespace oceanref::cli {
 
 namespace {
-std::vector<ExrPart> read_parts(const std::string& flag, const std::string& path) {
+// Each input may take a quarter of --max-memory: two images as floats, and the comparison's
+// per-value errors (doubles) of one.
+std::vector<ExrPart> read_parts(const std::string& flag, const std::string& path,
+                                double max_memory) {
   try {
-    return read_parts_for_compare(path);
+    return read_parts_for_compare(path, max_memory / 4.0);
   } catch (const std::exception& e) {
     throw UsageError(flag, e.what());
   }
@@ -69,7 +72,7 @@ std::vector<std::pair<std::string, std::string>> read_run_list(const std::string
 std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
   struct Flags {
     std::vector<std::string> files;
-    std::string report, profile, channels, json, format = "text", list, output, name;
+    std::string report, profile, channels, json, format = "text", list, output, name, max_memory;
     ChannelThreshold threshold;
     bool alpha = false, suggest = false;
     double safety = 4.0;
@@ -144,7 +147,13 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       ->check(number_in(1.0, 1e6));
   cmd->add_option("-o,--output", f->output, "--suggest: write the profile JSON to FILE");
   cmd->add_option("--name", f->name, "--suggest: the profile's name");
+  cmd->add_option("--max-memory", f->max_memory,
+                  "refuse inputs whose pixels need more than a quarter of SIZE each: bytes or K, "
+                  "M, G, T (binary), e.g. 20G; default 8G");
   return [f, floor, min_ssim](std::ostream& out) {
+    const double max_memory = f->max_memory.empty()
+                                  ? kDefaultMaxMemory
+                                  : parse_memory_size("--max-memory", f->max_memory);
     // The report folder is created if missing; its index.html must not be an input either.
     const std::filesystem::path report_page = std::filesystem::path(f->report) / "index.html";
     std::vector<std::string> inputs = f->files;
@@ -190,8 +199,9 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
       if (runs.size() > 4) derivation += " listed in " + f->list;
       for (const auto& [g, c] : runs) {
         try {
-          comparisons.push_back(compare_parts(read_parts("GOLDEN", g), read_parts("CANDIDATE", c),
-                                              selection, uniform_profile(measure)));
+          comparisons.push_back(compare_parts(read_parts("GOLDEN", g, max_memory),
+                                              read_parts("CANDIDATE", c, max_memory), selection,
+                                              uniform_profile(measure)));
         } catch (const std::invalid_argument& e) {
           throw UsageError("compare", e.what());
         }
@@ -230,8 +240,8 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
         throw UsageError("--profile", e.what());
       }
     }
-    const std::vector<ExrPart> candidate = read_parts("CANDIDATE", f->files[0]);
-    const std::vector<ExrPart> golden = read_parts("GOLDEN", f->files[1]);
+    const std::vector<ExrPart> candidate = read_parts("CANDIDATE", f->files[0], max_memory);
+    const std::vector<ExrPart> golden = read_parts("GOLDEN", f->files[1], max_memory);
     Comparison c;
     try {
       c = compare_parts(golden, candidate, selection, profile);

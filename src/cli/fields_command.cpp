@@ -18,7 +18,7 @@ namespace oceanref::cli {
 
 namespace {
 struct FieldsFlags {
-  std::string scene, output, at, time, stage;
+  std::string scene, output, at, time, stage, max_memory;
   int threads = 0;
 };
 
@@ -77,6 +77,7 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
   cmd->add_option("--threads", flags->threads,
                   "worker threads (default: all cores); the output is identical for any count")
       ->check(integer_in(0, 1024, " (0: all cores)"));
+  cmd->add_option("--max-memory", flags->max_memory, kMaxMemoryHelp);
   return [flags](std::ostream& out) {
     if (flags->output.empty() && flags->at.empty()) {
       throw UsageError("fields", "give -o OUT.exr or --at x,z");
@@ -94,6 +95,10 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
     if (!flags->time.empty()) {
       scene.time = parse_number_in("--time", flags->time, -1e7, 1e7, " s");
     }
+    require_within(fields_memory_estimate(scene),
+                   flags->max_memory.empty() ? kDefaultMaxMemory
+                                             : parse_memory_size("--max-memory", flags->max_memory),
+                   "--max-memory");
     progress("oceanref fields", "realizing the spectrum");
     const Ocean ocean = realize_ocean(scene.waves, threads);
     if (!flags->output.empty()) {

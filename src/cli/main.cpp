@@ -82,6 +82,12 @@ int main(int argc, char** argv) {
   } catch (const oceanref::cli::UsageError& e) {
     std::cerr << "oceanref: " << e.what() << '\n';
     return 2;
+  } catch (const std::bad_alloc&) {
+    // The large buffers name themselves (OutOfMemoryError); this is any other allocation.
+    std::cerr << "oceanref: out of memory: an allocation failed (peak resident memory "
+              << oceanref::mebibytes(oceanref::cli::peak_memory_bytes())
+              << "); free memory, or lower the resolution, the sample count or --max-memory\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "oceanref: " << e.what() << '\n';
     return 2;

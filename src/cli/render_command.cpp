@@ -44,7 +44,7 @@ void progress_bar(double share) {
 
 std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   struct Flags {
-    std::string scene, output, png;
+    std::string scene, output, png, max_memory;
     int threads = 0;
     int spp = 0;
     bool aov = false;
@@ -67,10 +67,13 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       "sun.RGB, sky.RGB, sea.RGB, foam.RGB, lighting_error.RGB (the estimated absolute error of "
       "the lighting per channel; for shading.accuracy fast, |fast - reference| + the reference's "
       "estimate, which costs a reference render)");
+  cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
   return [f](std::ostream& out) {
     check_output_paths({{"--output", f->output}, {"--png", f->png}}, {f->scene});
     RenderOutputOptions options;
     options.threads = resolve_threads(f->threads);
+    if (!f->max_memory.empty())
+      options.max_memory = parse_memory_size("--max-memory", f->max_memory);
     const Scene scene = load_scene(f->scene);
     options.samples_per_axis = samples_per_axis(f->spp);
     options.aov = f->aov;
@@ -91,6 +94,8 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     }
     out << "unconverged_samples," << r.image.unconverged_samples << '\n';
     out << "integrand_evaluations," << r.image.integrand_evaluations << '\n';
+    out << "memory_estimate_bytes," << format_number(render_memory_estimate(scene, options).total())
+        << '\n';
     if (r.image.unconverged_samples > 0) {
       progress("oceanref", "warning: " + std::to_string(r.image.unconverged_samples) +
                                " samples missed the lighting tolerance (their error estimates "

@@ -75,7 +75,7 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
   s.spread_blend = parse_number("--spread-blend", f.spread_blend, false, "[0, 1]");
   s.gamma = optional_number("--gamma", f.gamma, "[1, 20]");
   s.alpha = optional_number("--alpha", f.alpha, "(0, 10]");
-  s.peak_frequency = optional_number("--peak-omega", f.peak_omega, "(0, 1e+04] rad/s");
+  s.peak_frequency = optional_number("--peak-omega", f.peak_omega, "[0.0001, 1e+04] rad/s");
   s.sigma_low = optional_number("--sigma-low", f.sigma_low, "(0, 1]");
   s.sigma_high = optional_number("--sigma-high", f.sigma_high, "(0, 1]");
   s.pm_wind = parse_choice<UsageError>(kPiersonMoskowitzWinds, "--pm-wind", f.pm_wind);
@@ -95,6 +95,9 @@ Spectrum spectrum_from(const SpectrumFlags& f) {
     throw UsageError(flag_for(e.key()), e.what());
   }
 }
+
+// The most rows one table may have (--omega x --theta-deg): about 60 MB of CSV.
+constexpr double kMaxTableRows = 1e6;
 
 void write_omega_table(std::ostream& out, const Spectrum& s, const std::vector<double>& omegas) {
   out << "omega,S\n";
@@ -203,7 +206,7 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
                   "amplitude A (default 0.00405 = alpha_PM/2), in (0, 10]");
   cmd->add_option("--peak-omega", flags->peak_omega,
                   "override the peak angular frequency omega_p [rad/s] (pierson-moskowitz, "
-                  "jonswap, tma)");
+                  "jonswap, tma), in [0.0001, 10000]");
   cmd->add_option("--sigma-low", flags->sigma_low, "JONSWAP/TMA peak width below omega_p (0.07)");
   cmd->add_option("--sigma-high", flags->sigma_high, "JONSWAP/TMA peak width above omega_p (0.09)");
   cmd->add_option("--pm-wind", flags->pm_wind,
@@ -257,8 +260,18 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
       if (flags->theta.empty()) {
         write_omega_table(out, s, omegas);
       } else {
-        write_directional_table(out, s, omegas,
-                                parse_number_list("--theta-deg", flags->theta, "in degrees, each"));
+        const std::vector<double> thetas =
+            parse_number_list("--theta-deg", flags->theta, "in degrees, each");
+        // The table is assembled in memory before it is written (no partial output).
+        const double rows = static_cast<double>(omegas.size()) * static_cast<double>(thetas.size());
+        if (rows > kMaxTableRows) {
+          throw UsageError(
+              "--theta-deg",
+              std::to_string(omegas.size()) + " frequencies x " + std::to_string(thetas.size()) +
+                  " directions = " + shortest_number(rows) + " rows, over the limit of " +
+                  shortest_number(kMaxTableRows) + "; split the table into several calls");
+        }
+        write_directional_table(out, s, omegas, thetas);
       }
     } else if (!flags->wavevector.empty()) {
       write_wavevector_table(out, s, flags->wavevector);

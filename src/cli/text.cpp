@@ -1,5 +1,7 @@
 #include "cli/text.h"
 
+#include <sys/resource.h>
+
 #include "core/direction.h"
 
 #include <unistd.h>
@@ -50,6 +52,31 @@ double parse_number_in(const std::string& flag, std::string_view text, double lo
   const double v = parse_number(flag, text, false, range);
   if (v < lo || v > hi)
     throw UsageError(flag, "must be in " + range + ", got " + quote_value(text));
+  return v;
+}
+
+double peak_memory_bytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;
+  return static_cast<double>(usage.ru_maxrss) * 1024.0;  // Linux: kibibytes
+}
+
+double parse_memory_size(const std::string& flag, std::string_view text) {
+  std::string number(text);
+  double unit = 1.0;
+  if (!number.empty()) {
+    const std::string suffixes = "KMGT";
+    const std::size_t power = suffixes.find(number.back());
+    if (power != std::string::npos) {
+      number.pop_back();
+      for (std::size_t i = 0; i <= power; ++i) unit *= 1024.0;
+    }
+  }
+  const std::string range = "[16M, 1048576G] (bytes, or with a binary suffix K, M, G, T)";
+  const double v = parse_number(flag, number, false, range) * unit;
+  if (v < kMinMaxMemory || v > kMaxMaxMemory) {
+    throw UsageError(flag, "must be in " + range + ", got " + quote_value(text));
+  }
   return v;
 }
 

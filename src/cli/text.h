@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/format.h"
+#include "core/memory.h"
 
 namespace oceanref::cli {
 
@@ -41,6 +42,15 @@ double parse_number(const std::string& flag, std::string_view text, bool allow_i
 // One finite number in [lo, hi] (the message states the range, with `unit` after it).
 double parse_number_in(const std::string& flag, std::string_view text, double lo, double hi,
                        const std::string& unit = "");
+// --max-memory: bytes, or a number with a binary suffix K, M, G or T ("512M", "1.5G"), in
+// [kMinMaxMemory, kMaxMaxMemory] (core/memory.h).
+double parse_memory_size(const std::string& flag, std::string_view text);
+// The process's peak resident memory so far (bytes; getrusage), for the render report.
+double peak_memory_bytes();
+// The help text of --max-memory.
+inline constexpr const char* kMaxMemoryHelp =
+    "refuse to start when the estimated memory (every large buffer) is over SIZE: bytes or "
+    "K, M, G, T (binary), e.g. 20G; default 8G";
 // One integer in [lo, hi] written in decimal (an optional sign, digits, nothing else).
 long long parse_integer_in(const std::string& flag, std::string_view text, long long lo,
                            long long hi, const std::string& note = "");

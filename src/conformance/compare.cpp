@@ -702,8 +702,8 @@ Comparison compare_parts(const std::vector<ExrPart>& golden, const std::vector<E
   return result;
 }
 
-std::vector<ExrPart> read_parts_for_compare(const std::string& path) {
-  return read_exr_parts(path);
+std::vector<ExrPart> read_parts_for_compare(const std::string& path, double max_bytes) {
+  return read_exr_parts(path, max_bytes);
 }
 
 std::string generalize_name(const std::string& name) {

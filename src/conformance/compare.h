@@ -198,7 +198,9 @@ std::string short_number(double v);
 
 // The parts and levels of an EXR file as compare reads them: every part, every resolution level
 // (read_exr_parts, io/exr.h).
-std::vector<ExrPart> read_parts_for_compare(const std::string& path);
+// At most `max_bytes` of pixels are read (a larger file is an error naming its size).
+std::vector<ExrPart> read_parts_for_compare(const std::string& path,
+                                            double max_bytes = kDefaultMaxMemory / 4.0);
 
 // --suggest: per-channel thresholds from a set of candidate runs. Channels are grouped by their
 // name with every run of digits replaced by '*' (c0.height, c1.height → c*.height), over all

@@ -90,6 +90,22 @@ void add_channel(ExrImage& image, std::map<std::string, std::vector<double>>& ex
 }
 }  // namespace
 
+MemoryEstimate fields_memory_estimate(const Scene& scene) {
+  const double cells = static_cast<double>(scene.waves.resolution) * scene.waves.resolution;
+  const double cascades = static_cast<double>(scene.waves.sizes.size());
+  // At most ten channels per cascade (eight fields, Jacobian, foam) and eight of the sum part,
+  // each value as float, as double and in the two hash inputs (8 + 4 bytes).
+  const double values = (10.0 * cascades + 8.0) * cells;
+  const double foam = scene.foam.steps > 0 ? 2.0 * (cascades + 1.0) * cells * sizeof(double) : 0.0;
+  return {{{"wave grids", wave_grid_bytes(scene.waves)},
+           {"output channels", values * (sizeof(float) + sizeof(double))},
+           {"hash input", values * (sizeof(double) + sizeof(float))},
+           {"combined fields", cells * sizeof(PointFields)},
+           {"evolved spectra", 2.0 * cascades * cells * sizeof(Complex)},
+           {"temporaries (Jacobian, foam, a sum channel)", 3.0 * cells * sizeof(double)},
+           {"foam accumulation", foam}}};
+}
+
 FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,
                          const std::function<void(const std::string&)>& log) {
   if (log) log("synthesizing " + std::to_string(ocean.cascades.size()) + " cascades");
@@ -179,6 +195,10 @@ FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,
   // The hashes: every channel of every part in name order (names are unique across parts).
   std::vector<std::uint8_t> bytes;
   std::vector<std::uint8_t> bytes32;
+  std::size_t count = 0;
+  for (const auto& [name, values] : exact) count += name.size() + 1 + values.size();
+  bytes.reserve(count * sizeof(double));
+  bytes32.reserve(count * sizeof(float));
   for (const auto& [name, values] : exact) {  // std::map: name order
     for (auto* b : {&bytes, &bytes32}) {
       b->insert(b->end(), name.begin(), name.end());

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/memory.h"
 #include "io/exr.h"
 #include "scene/scene.h"
 #include "waves/stages.h"
@@ -23,6 +24,10 @@ struct FieldsImage {
   std::string sha256;
   std::string f64_sha256;
 };
+// Every large buffer fields_image (and stage_image, which needs less) allocates for `scene`
+// (bytes): the wave grids, each output value as float and double and in the hash input, the
+// combined fields and the foam accumulation.
+MemoryEstimate fields_memory_estimate(const Scene& scene);
 // `log` (may be empty) receives progress notes.
 FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,
                          const std::function<void(const std::string&)>& log = {});

@@ -64,7 +64,29 @@ RenderedScene render_scene(const std::string& path, const RenderOutputOptions& o
   return render_scene(load_scene(path), options);
 }
 
+MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOptions& options) {
+  const ImageSettings& im = scene.image;
+  const int axis = options.samples_per_axis > 0 ? options.samples_per_axis : im.samples_per_axis;
+  const double pixels = static_cast<double>(im.width) * im.height;
+  const double samples = pixels * axis * axis;
+  const double vertices = static_cast<double>(scene.grid.columns) * scene.grid.rows;
+  // Per vertex: x0, the displaced position, its projection and two triangles of indices.
+  const double vertex_bytes = sizeof(glm::dvec2) + sizeof(glm::dvec3) + sizeof(ScreenVertex) +
+                              2 * sizeof(std::array<std::uint32_t, 3>);
+  // Per pixel: radiance, the four terms, normal, x0, the lighting error; depth and coverage.
+  const double pixel_bytes = 8 * sizeof(Vec3) + 2 * sizeof(double);
+  const double channels = options.aov ? 26 : 3;
+  return {{{"wave grids", wave_grid_bytes(scene.waves)},
+           {"projected grid", vertices * vertex_bytes},
+           {"sample fragments", samples * sizeof(Fragment)},
+           {"pixel buffers", pixels * pixel_bytes},
+           {"EXR channels", pixels * channels * sizeof(float)},
+           {"radiance hash input", pixels * sizeof(Vec3)}}};
+}
+
 RenderedScene render_scene(const Scene& scene, const RenderOutputOptions& options) {
+  require_within(render_memory_estimate(scene, options), options.max_memory,
+                 "--max-memory (Python: max_memory=)");
   const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
   note(options.log, "rendering " + std::to_string(p->scene.image.width) + "x" +
                         std::to_string(p->scene.image.height) + " at " +

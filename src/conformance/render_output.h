@@ -3,6 +3,8 @@
 // matrices and lighting attributes — and its two hashes, the contract the golden suite checks.
 #pragma once
 
+#include "core/memory.h"
+
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -42,7 +44,14 @@ struct RenderOutputOptions {
   bool aov = false;          // also the layers (and, for a fast render, its reference error)
   std::function<void(const std::string&)> log;  // progress notes (may be empty)
   std::function<void(double)> progress;         // share of the image done (may be empty)
+  // render_scene refuses (MemoryLimitError) a render whose estimate is over this many bytes.
+  double max_memory = kDefaultMaxMemory;
 };
+
+// Every large buffer render_scene allocates for `scene` with `options` (bytes): the wave grids,
+// the projected grid, the sample fragments, the per-pixel buffers, the EXR channels and the
+// radiance serialized for its hash.
+MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOptions& options);
 
 // A scene rendered to the EXR that `render` writes (attributes included) and its pixel hashes.
 struct RenderedScene {

@@ -1,5 +1,6 @@
 #include "io/exr.h"
 
+#include "core/format.h"
 #include "io/output_file.h"
 
 #include <ImfChannelList.h>
@@ -20,7 +21,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 
@@ -151,8 +154,60 @@ void read_attributes(const Imf::Header& header, ExrImage& image) {
   }
 }
 
-// An image with the header's attributes and channels (zero-filled) for the given data window,
-// and the frame buffer that reads into it.
+// Bytes of `lines` rows of `width` pixels of every channel of `header` as floats.
+double channel_bytes(const Imf::Header& header, double width, double lines) {
+  double bytes = 0.0;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
+    const double sampling = std::max(1, c.channel().xSampling);
+    bytes += width * lines / (sampling * sampling) * sizeof(float);
+  }
+  return bytes;
+}
+
+// Rows per compressed block of a scanline file: OpenEXR buffers one block.
+double rows_per_block(Imf::Compression c) {
+  switch (c) {
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION:
+      return 16.0;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION:
+      return 32.0;
+    case Imf::DWAB_COMPRESSION:
+      return 256.0;
+    default:  // none, RLE, ZIPS
+      return 1.0;
+  }
+}
+
+// Takes `bytes` from the reading budget (the bytes the file may still allocate), or refuses.
+void reserve(double& budget, double bytes, const std::string& what) {
+  if (bytes > budget) {
+    throw MemoryLimitError(what + " need " + mebibytes(bytes) + ", over the " + mebibytes(budget) +
+                           " left of the reading limit (--max-memory)");
+  }
+  budget -= bytes;
+}
+
+std::string size_text(const Imf::Header& header, const Imath::Box2i& window) {
+  int channels = 0;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c) ++channels;
+  return std::to_string(static_cast<long long>(window.max.x) - window.min.x + 1) + " x " +
+         std::to_string(static_cast<long long>(window.max.y) - window.min.y + 1) + " pixels of " +
+         std::to_string(channels) + " channels";
+}
+
+// Reserves an image's pixels before OpenEXR or this reader allocates anything for it.
+void reserve_image(double& budget, const Imf::Header& header, const Imath::Box2i& window) {
+  const double width = static_cast<double>(window.max.x) - window.min.x + 1.0;
+  const double height = static_cast<double>(window.max.y) - window.min.y + 1.0;
+  reserve(budget, channel_bytes(header, width, height), size_text(header, window));
+}
+
+// An image with the header's attributes and channels (zero-filled) for the given data window
+// (its pixels reserved: reserve_image), and the frame buffer that reads into it.
 ExrImage prepare_image(const Imf::Header& header, const Imath::Box2i& window, bool tiled,
                        Imf::FrameBuffer& frame) {
   ExrImage image;
@@ -174,8 +229,9 @@ ExrImage prepare_image(const Imf::Header& header, const Imath::Box2i& window, bo
     }
     image.channels.push_back(
         {c.name(), sampling,
-         std::vector<float>(static_cast<std::size_t>(image.width / sampling) *
-                            static_cast<std::size_t>(image.height / sampling))});
+         allocate_buffer<float>(static_cast<std::size_t>(image.width / sampling) *
+                                    static_cast<std::size_t>(image.height / sampling),
+                                "channel " + std::string(c.name()) + " of an EXR file read")});
   }
   for (ExrChannel& c : image.channels) {
     frame.insert(c.name, float_slice(c.values.data(), window, c.sampling));
@@ -187,7 +243,8 @@ std::string part_label(const Imf::Header& header, int index) {
   return "part " + std::to_string(index) + (header.hasName() ? " '" + header.name() + "'" : "");
 }
 
-void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& out) {
+void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& out,
+               double& budget) {
   const Imf::Header& header = file.header(index);
   const std::string name = header.hasName() ? header.name() : "";
   try {
@@ -195,7 +252,13 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
       throw std::runtime_error("deep data (" + header.type() +
                                ") is not supported: only flat images are read");
     }
+    const Imath::Box2i data = header.dataWindow();
+    const double width = static_cast<double>(data.max.x) - data.min.x + 1.0;
     if (!header.hasTileDescription()) {
+      // OpenEXR's line buffer (one compressed block of rows), released once the part is read.
+      const double line_buffer = channel_bytes(header, width, rows_per_block(header.compression()));
+      reserve(budget, line_buffer, "the line buffer of " + size_text(header, data));
+      reserve_image(budget, header, data);
       Imf::InputPart part(file, index);
       Imf::FrameBuffer frame;
       const Imath::Box2i window = header.dataWindow();
@@ -203,8 +266,15 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
       part.setFrameBuffer(frame);
       part.readPixels(window.min.y, window.max.y);
       out.push_back(std::move(p));
+      budget += line_buffer;
       return;
     }
+    // OpenEXR's tile buffers (two tiles), released once the part is read.
+    const Imf::TileDescription tile = header.tileDescription();
+    const double tile_buffers = 2.0 * channel_bytes(header, tile.xSize, tile.ySize);
+    reserve(budget, tile_buffers,
+            "the tile buffers of " + std::to_string(tile.xSize) + " x " +
+                std::to_string(tile.ySize) + " tiles");
     Imf::TiledInputPart part(file, index);
     // ONE_LEVEL: 1 × 1 levels; MIPMAP_LEVELS: (l, l); RIPMAP_LEVELS: every (lx, ly).
     const bool ripmap = part.levelMode() == Imf::RIPMAP_LEVELS;
@@ -215,12 +285,14 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
         const int level_y = ripmap ? ly : lx;
         Imf::FrameBuffer frame;
         const Imath::Box2i window = part.dataWindowForLevel(lx, level_y);
+        reserve_image(budget, header, window);
         ExrPart p{name, lx, level_y, prepare_image(header, window, true, frame)};
         part.setFrameBuffer(frame);
         part.readTiles(0, part.numXTiles(lx) - 1, 0, part.numYTiles(level_y) - 1, lx, level_y);
         out.push_back(std::move(p));
       }
     }
+    budget += tile_buffers;
   } catch (const std::exception& e) {
     throw std::runtime_error(part_label(header, index) + ": " + e.what());
   }
@@ -228,6 +300,138 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
 
 std::runtime_error read_error(const std::string& path, const std::string& what) {
   return std::runtime_error(path + ": cannot read the EXR file: " + what);
+}
+
+// OpenEXR checks a header's data window and tile size against process-wide maxima before it
+// allocates its offset tables; set them once (call_once: readers may run on several threads).
+void limit_openexr_image_size() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    Imf::Header::setMaxImageSize(kMaxExrSide, kMaxExrSide);
+    Imf::Header::setMaxTileSize(kMaxExrSide, kMaxExrSide);
+  });
+}
+
+// A little-endian 32-bit integer at the stream's position.
+bool read_int32(std::istream& in, std::int32_t& value) {
+  unsigned char b[4] = {};
+  if (!in.read(reinterpret_cast<char*>(b), 4)) return false;
+  value = static_cast<std::int32_t>(
+      static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
+      static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24);
+  return true;
+}
+
+// A NUL-terminated name of at most 255 bytes (OpenEXR reads that many whether or not the
+// long-names flag is set).
+bool read_name(std::istream& in, std::string& name) {
+  name.clear();
+  for (char c = 0; in.get(c);) {
+    if (c == '\0') return true;
+    if (name.size() == 255) return false;
+    name.push_back(c);
+  }
+  return false;
+}
+
+// The size of each fixed-size attribute type of OpenEXR 3.1: it reads that many bytes whatever
+// size the header declares.
+std::int32_t fixed_size(const std::string& type) {
+  static const std::map<std::string, std::int32_t> sizes{
+      {"box2i", 16},    {"box2f", 16},   {"int", 4},      {"float", 4},
+      {"double", 8},    {"v2i", 8},      {"v2f", 8},      {"v2d", 16},
+      {"v3i", 12},      {"v3f", 12},     {"v3d", 24},     {"m33f", 36},
+      {"m33d", 72},     {"m44f", 64},    {"m44d", 128},   {"compression", 1},
+      {"lineOrder", 1}, {"envmap", 1},   {"tiledesc", 9}, {"chromaticities", 32},
+      {"rational", 8},  {"keycode", 28}, {"timecode", 8}, {"deepImageState", 1}};
+  const auto it = sizes.find(type);
+  return it == sizes.end() ? -1 : it->second;
+}
+
+// The bytes OpenEXR reads for one attribute value must be the `size` the header declares:
+// otherwise its reading and this walk part ways, and OpenEXR allocates from misread bytes.
+// Fixed-size types must declare their size; a channel list runs to its empty name; a preview
+// holds 8 + 4·width·height bytes; a string vector's lengths stay inside the value.
+void check_attribute_value(std::istream& in, const std::string& type, std::int32_t size) {
+  const std::int32_t fixed = fixed_size(type);
+  if (fixed >= 0 && size != fixed) {
+    throw std::runtime_error("declares " + std::to_string(size) + " bytes; a " + type + " has " +
+                             std::to_string(fixed));
+  }
+  std::int64_t used = 0;
+  if (type == "chlist") {
+    for (std::string channel;;) {
+      if (!read_name(in, channel)) throw std::runtime_error("a channel name is not terminated");
+      used += static_cast<std::int64_t>(channel.size()) + 1;
+      if (channel.empty()) break;
+      used += 16;  // pixel type, pLinear and reserved, x and y sampling
+      if (used > size) break;
+      in.seekg(16, std::ios::cur);
+    }
+  } else if (type == "preview") {
+    std::int32_t width = 0, height = 0;
+    if (!read_int32(in, width) || !read_int32(in, height)) return;
+    used = 8 + 4 * static_cast<std::int64_t>(static_cast<std::uint32_t>(width)) *
+                   static_cast<std::uint32_t>(height);
+  } else if (type == "stringvector") {
+    for (std::int32_t length = 0; used < size; used += length) {
+      if (!read_int32(in, length)) return;
+      used += 4;
+      if (length < 0 || used + length > size) {
+        throw std::runtime_error("holds a string of " + std::to_string(length) +
+                                 " bytes past its end");
+      }
+      in.seekg(length, std::ios::cur);
+    }
+  } else {
+    return;  // strings and other types: OpenEXR reads exactly `size` bytes
+  }
+  if (used != size) {
+    throw std::runtime_error("declares " + std::to_string(size) + " bytes, but its " + type +
+                             " value has " + std::to_string(used));
+  }
+}
+
+// OpenEXR allocates each header attribute's claimed size before it reads the value (a 1 KB file
+// can claim a 2 GB attribute). Walk the headers first (magic, version flags, then per header
+// name\0 type\0 int32-size value..., an empty name ending it; multi-part files have several
+// headers and an empty one at the end) and refuse a size the file cannot hold or one the value
+// contradicts (check_attribute_value). Anything else malformed is left to OpenEXR's checks.
+void check_header_sizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const std::streamoff file_size = in.tellg();
+  in.seekg(0);
+  unsigned char start[8] = {};
+  if (!in.read(reinterpret_cast<char*>(start), 8)) return;
+  if (start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 || start[3] != 0x01) return;
+  const bool multipart = (start[5] & 0x10) != 0;  // version flags: bit 12
+  std::string name, type;
+  for (int header = 0;; ++header) {
+    if (multipart && header > 0 && in.peek() == 0) return;  // the empty header ends the list
+    while (true) {
+      if (!read_name(in, name)) return;
+      if (name.empty()) break;  // the end of this header
+      std::int32_t size = 0;
+      if (!read_name(in, type) || !read_int32(in, size)) return;
+      const std::streamoff value = in.tellg();
+      const std::streamoff left = file_size - value;
+      const std::string what =
+          "header attribute " + escape_value(name) + " (" + escape_value(type) + ") ";
+      if (size < 0 || size > left) {
+        throw std::runtime_error(what + "claims " + std::to_string(size) + " bytes, but only " +
+                                 std::to_string(left) + " bytes of the file follow");
+      }
+      try {
+        check_attribute_value(in, type, size);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(what + e.what());
+      }
+      in.clear();
+      in.seekg(value + size);
+    }
+    if (!multipart) return;
+  }
 }
 
 void check_readable(const std::string& path) {
@@ -295,28 +499,32 @@ void write_exr_parts(const std::string& path, const std::vector<ExrPart>& parts)
   });
 }
 
-ExrImage read_exr(const std::string& path) {
+ExrImage read_exr(const std::string& path, double max_bytes) {
   check_readable(path);
+  limit_openexr_image_size();
   try {
+    check_header_sizes(path);
     Imf::MultiPartInputFile file(path.c_str());
     if (file.parts() != 1) {
       throw std::runtime_error("it has " + std::to_string(file.parts()) +
                                " parts; read multi-part files with read_exr_parts");
     }
     std::vector<ExrPart> parts;
-    read_part(file, 0, parts);
+    read_part(file, 0, parts, max_bytes);
     return std::move(parts.front().image);  // level 0 of a tiled file
   } catch (const std::exception& e) {
     throw read_error(path, e.what());
   }
 }
 
-std::vector<ExrPart> read_exr_parts(const std::string& path) {
+std::vector<ExrPart> read_exr_parts(const std::string& path, double max_bytes) {
   check_readable(path);
+  limit_openexr_image_size();
   try {
+    check_header_sizes(path);
     Imf::MultiPartInputFile file(path.c_str());
     std::vector<ExrPart> parts;
-    for (int i = 0; i < file.parts(); ++i) read_part(file, i, parts);
+    for (int i = 0; i < file.parts(); ++i) read_part(file, i, parts, max_bytes);
     return parts;
   } catch (const std::exception& e) {
     throw read_error(path, e.what());

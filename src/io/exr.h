@@ -8,7 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "core/memory.h"
+
 namespace oceanref {
+
+// The widest or tallest data window the readers accept (OpenEXR's Header::setMaxImageSize and
+// setMaxTileSize, set on the first read): four times the largest image oceanref renders.
+inline constexpr int kMaxExrSide = 65536;
 
 // One channel of a width × height image. A channel may be subsampled by an integer factor
 // (EXR x/y sampling): it then holds (width/sampling) × (height/sampling) values, row-major.
@@ -49,7 +55,9 @@ struct ExrPart {
 void write_exr(const std::string& path, const ExrImage& image);
 // Reads every channel as float (at its own sampling), the string and M44f attributes of a
 // single-part file; a file with several parts is rejected (read it with read_exr_parts).
-ExrImage read_exr(const std::string& path);
+// At most `max_bytes` of pixels (as floats) are allocated: a larger file is refused before its
+// pixels are read (readers also refuse data windows wider or taller than kMaxExrSide).
+ExrImage read_exr(const std::string& path, double max_bytes = kDefaultMaxMemory);
 
 // Writes a multi-part file (one part: an ordinary single-part file with a `name` attribute),
 // atomically as write_exr, ZIP-compressed scanline parts of float channels. Every part needs a
@@ -63,7 +71,8 @@ void write_exr_parts(const std::string& path, const std::vector<ExrPart>& parts)
 // (half, float, uint); subsampled channels keep their sampling (equal in x and y); a data window
 // not starting at 0, 0 sets origin_x/origin_y. The part's name is in ExrPart::name ("" for an
 // unnamed single-part file), not in the attributes. Deep parts are rejected; every failure is a
-// std::runtime_error naming the file (and the part).
-std::vector<ExrPart> read_exr_parts(const std::string& path);
+// std::runtime_error naming the file (and the part). At most `max_bytes` of pixels in all (as
+// floats) are allocated: a file needing more is refused with the size it needs.
+std::vector<ExrPart> read_exr_parts(const std::string& path, double max_bytes = kDefaultMaxMemory);
 
 }  // namespace oceanref

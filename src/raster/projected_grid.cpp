@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/math.h"
+#include "core/memory.h"
 
 namespace oceanref {
 
@@ -114,7 +115,8 @@ ProjectedGrid project_grid(const Camera& camera, const ProjectedGridSettings& s)
   y_min -= my;
   y_max += my;
   const glm::dmat4 inverse = glm::inverse(view_projection);
-  grid.base.resize(static_cast<std::size_t>(s.columns) * static_cast<std::size_t>(s.rows));
+  grid.base = allocate_buffer<glm::dvec2>(
+      static_cast<std::size_t>(s.columns) * static_cast<std::size_t>(s.rows), "the projected grid");
   for (int j = 0; j < s.rows; ++j) {
     const double v = s.rows > 1 ? static_cast<double>(j) / (s.rows - 1) : 0.5;
     for (int i = 0; i < s.columns; ++i) {

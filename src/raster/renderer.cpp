@@ -12,6 +12,7 @@
 #include "core/format.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
+#include "core/memory.h"
 #include "core/parallel.h"
 #include "spectrum/moments.h"
 #include "waves/fft.h"
@@ -59,8 +60,8 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
   g.grid = project_grid(job.camera, settings);
   if (!g.grid.visible) return g;
   const std::size_t count = g.grid.base.size();
-  g.world.resize(count);
-  g.screen.resize(count);
+  g.world = allocate_buffer<glm::dvec3>(count, "the displaced projected-grid vertices");
+  g.screen = allocate_buffer<ScreenVertex>(count, "the projected-grid vertices on screen");
   parallel_for(g.grid.rows, job.threads, [&](int j) {
     for (int i = 0; i < g.grid.columns; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
@@ -136,8 +137,9 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
 }
 
 std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const SampleGrid& grid) {
-  std::vector<Fragment> fragments(static_cast<std::size_t>(grid.columns()) *
-                                  static_cast<std::size_t>(grid.rows()));
+  std::vector<Fragment> fragments = allocate_buffer<Fragment>(
+      static_cast<std::size_t>(grid.columns()) * static_cast<std::size_t>(grid.rows()),
+      "the sample fragments (one per sample of the image)");
   if (!g.grid.visible) return fragments;
   const int bands = std::max(1, job.threads);
   parallel_for(bands, bands, [&](int band) {
@@ -184,16 +186,19 @@ RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, Rend
   const FrameLighting light = frame_lighting(job.sky, job.shading);
   const auto pixels =
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
-  image.radiance.assign(pixels, Vec3{});
-  image.sun.assign(pixels, Vec3{});
-  image.sky.assign(pixels, Vec3{});
-  image.sea.assign(pixels, Vec3{});
-  image.foam.assign(pixels, Vec3{});
-  image.depth.assign(pixels, 0.0);
-  image.normal.assign(pixels, Vec3{});
-  image.x0.assign(pixels, Vec3{});
-  image.coverage.assign(pixels, 0.0);
-  image.lighting_error.assign(pixels, Vec3{});
+  const auto pixel_buffer = [pixels](const char* layer) {
+    return allocate_buffer<Vec3>(pixels, std::string("the per-pixel ") + layer + " buffer");
+  };
+  image.radiance = pixel_buffer("radiance");
+  image.sun = pixel_buffer("sun");
+  image.sky = pixel_buffer("sky");
+  image.sea = pixel_buffer("sea");
+  image.foam = pixel_buffer("foam");
+  image.depth = allocate_buffer<double>(pixels, "the per-pixel depth buffer");
+  image.normal = pixel_buffer("normal");
+  image.x0 = pixel_buffer("x0");
+  image.coverage = allocate_buffer<double>(pixels, "the per-pixel coverage buffer");
+  image.lighting_error = pixel_buffer("lighting error");
   std::atomic<long> unconverged{0};
   std::atomic<long> evaluations{0};
   const int s = job.samples_per_axis;

@@ -85,9 +85,6 @@ Sky scene_sky(const Scene& scene);
 // Everything `render` needs from a scene and its realized ocean (which must outlive the job).
 RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads);
 
-// The memory cap for wave grids (bytes): scenes whose grids would need more are rejected.
-inline constexpr double kWaveMemoryCap = 8.0 * 1024 * 1024 * 1024;
-
 // Parses scene text strictly (DESIGN.md, "Scene files"): one JSON value and nothing after it but
 // whitespace; no NUL byte anywhere; no key twice in one object; every number finite as a double.
 // Errors are SceneErrors naming the JSON path (e.g. "waves.cascades.sizes[1]") or, for syntax

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <utility>
 
+#include "core/format.h"
 #include "core/math.h"
 #include "spectrum/frequency_spectra.h"
 #include "spectrum/spreading.h"
@@ -18,6 +19,8 @@ constexpr double kPi = std::numbers::pi;
 // JONSWAP is fitted for χ < 10⁴ (Gamper §3.4, after eq. 3.52).
 constexpr double kJonswapMaxFetch = 1.0e4;
 
+// A computed quantity in a message (six significant digits); given values and ranges are echoed
+// exactly (shortest_number).
 std::string number(double v) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.6g", v);
@@ -27,13 +30,13 @@ std::string number(double v) {
 // Rejects values outside [lo, hi] (NaN included) with the key, the range and the value.
 void require_range(const char* key, double value, double lo, double hi, const char* unit) {
   if (value >= lo && value <= hi) return;
-  throw SettingError(key, std::string("must be in [") + number(lo) + ", " + number(hi) + "]" +
-                              unit + ", got " + number(value));
+  throw SettingError(key, std::string("must be in [") + shortest_number(lo) + ", " +
+                              shortest_number(hi) + "]" + unit + ", got " + shortest_number(value));
 }
 void require_positive(const char* key, double value, double hi, const char* unit) {
   if (value > 0.0 && value <= hi) return;
-  throw SettingError(
-      key, std::string("must be in (0, ") + number(hi) + "]" + unit + ", got " + number(value));
+  throw SettingError(key, std::string("must be in (0, ") + shortest_number(hi) + "]" + unit +
+                              ", got " + shortest_number(value));
 }
 
 std::string extrapolation_hint() {
@@ -166,7 +169,11 @@ void validate(const SpectrumSettings& in) {
   require_range("capillary_wavenumber", in.capillary_wavenumber, 1.0, 1.0e4, " rad/m");
   if (in.gamma) require_range("gamma", *in.gamma, 1.0, 20.0, "");
   if (in.alpha) require_positive("alpha", *in.alpha, 10.0, "");
-  if (in.peak_frequency) require_positive("peak_frequency", *in.peak_frequency, 1.0e4, " rad/s");
+  // Below 1e-4 rad/s (a 17-hour period, far beyond any wind sea or swell) the spectrum's mass
+  // lies at wavenumbers under 1e-9 rad/m and its moments no longer converge in double precision.
+  if (in.peak_frequency) {
+    require_range("peak_frequency", *in.peak_frequency, 1.0e-4, 1.0e4, " rad/s");
+  }
   if (in.sigma_low) require_positive("sigma_low", *in.sigma_low, 1.0, "");
   if (in.sigma_high) require_positive("sigma_high", *in.sigma_high, 1.0, "");
   const bool frequency_law = in.model == SpectrumModel::pierson_moskowitz ||

@@ -16,6 +16,16 @@ double default_minimum_wavelength(SpectrumModel model) {
   return model == SpectrumModel::unified ? 0.0 : kMinimumWavelength;
 }
 
+double wave_grid_bytes(const WaveSettings& settings) {
+  const double high = static_cast<double>(settings.resolution) * settings.resolution;
+  const double low = static_cast<double>(settings.low_resolution) * settings.low_resolution;
+  // h0, 1/k and ω (PatternSpectrum); h(k, t) and the packed transform; the transform's input
+  // and output copies; the eight fields.
+  const double per_cell = sizeof(Complex) + 2 * sizeof(double) + 2 * sizeof(Complex) +
+                          2 * sizeof(Complex) + kFieldCount * sizeof(double);
+  return static_cast<double>(settings.sizes.size()) * (high + low) * per_cell;
+}
+
 Ocean realize_ocean(const WaveSettings& settings, int threads) {
   const ReferenceFpEnvironment fp;
   Ocean ocean{make_spectrum(settings.spectrum), {}};

@@ -49,6 +49,11 @@ struct Ocean {
   std::vector<CascadeSpectra> cascades;
 };
 
+// Bytes the wave grids of `settings` need: per cell of each cascade's two grids the frozen
+// spectrum (h0, 1/k, ω), h(k, t), the packed transform and its copies, the eight
+// fields. For the memory checks (core/memory.h).
+double wave_grid_bytes(const WaveSettings& settings);
+
 // λ_min for a spectrum: 0 for Unified (it models capillary waves), 1.73 cm otherwise.
 double default_minimum_wavelength(SpectrumModel model);
 

@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "core/math.h"
+#include "core/memory.h"
 #include "core/parallel.h"
 #include "waves/fft.h"
 #include "waves/random.h"
@@ -40,8 +41,9 @@ PatternSpectrum pattern_grid(const Spectrum& spectrum, const Pattern& p) {
                    "a pattern's N is a power of two >= 2, got " + std::to_string(n));
   OCEANREF_EXPECTS(p.size > 0.0, "a pattern's size L is positive, got " + std::to_string(p.size));
   const double dk = wavenumber_spacing(p.size);
-  PatternSpectrum s{p, std::vector<Complex>(grid_cells(n)), std::vector<double>(grid_cells(n)),
-                    std::vector<double>(grid_cells(n))};
+  PatternSpectrum s{p, allocate_buffer<Complex>(grid_cells(n), "a wave grid's h0"),
+                    allocate_buffer<double>(grid_cells(n), "a wave grid's 1/k"),
+                    allocate_buffer<double>(grid_cells(n), "a wave grid's omega")};
   for (int b = 0; b < n; ++b) {
     for (int a = 0; a < n; ++a) {
       const std::size_t i = grid_offset(a, b, n);

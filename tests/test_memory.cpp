@@ -1,0 +1,103 @@
+// Memory as a checked resource (issue 15 point 3): the estimate's arithmetic and message, the
+// allocation failure that names its buffer, and the wave-grid estimate against the capacity of
+// the buffers a realized and synthesized ocean actually holds.
+#include <doctest/doctest.h>
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "conformance/render_output.h"
+#include "core/memory.h"
+#include "scene/scene.h"
+#include "waves/ocean.h"
+
+using namespace oceanref;
+
+TEST_CASE("memory: mebibytes in messages") {
+  CHECK(mebibytes(0.0) == "0 MiB");
+  CHECK(mebibytes(1.0) == "0.1 MiB");  // something is never shown as nothing
+  CHECK(mebibytes(1.5 * kMebibyte) == "1.5 MiB");
+  CHECK(mebibytes(8192.0 * kMebibyte) == "8192 MiB");
+}
+
+TEST_CASE("memory: an estimate over the limit names its largest buffers and the flag") {
+  const MemoryEstimate e{{{"a", 1.0 * kMebibyte},
+                          {"b", 40.0 * kMebibyte},
+                          {"c", 3.0 * kMebibyte},
+                          {"d", 20.0 * kMebibyte}}};
+  CHECK(e.total() == 64.0 * kMebibyte);
+  CHECK_NOTHROW(require_within(e, 64.0 * kMebibyte, "--max-memory"));
+  std::string message;
+  try {
+    require_within(e, 63.0 * kMebibyte, "--max-memory");
+  } catch (const MemoryLimitError& error) {
+    message = error.what();
+  }
+  CHECK(message ==
+        "needs an estimated 64 MiB of memory (largest: b 40 MiB, d 20 MiB, c 3 MiB), over the "
+        "limit of 63 MiB; raise it with --max-memory or make the job smaller");
+}
+
+TEST_CASE("memory: a failed allocation names what it was for and how much") {
+  // More elements than a vector can hold: std::length_error before any allocation (the same
+  // path as std::bad_alloc, and safe under AddressSanitizer).
+  const std::size_t count = std::size_t{1} << 62;
+  std::string message;
+  try {
+    (void)allocate_buffer<double>(count, "the test buffer");
+  } catch (const OutOfMemoryError& error) {
+    message = error.what();
+  }
+  CHECK(message ==
+        "out of memory: could not allocate 35184372088832 MiB for the test buffer (free memory, "
+        "or lower the resolution or sample count)");
+  CHECK(allocate_buffer<int>(3, "three", 7) == std::vector<int>{7, 7, 7});
+}
+
+TEST_CASE("memory: the wave-grid estimate covers what a realized ocean holds") {
+  WaveSettings w;
+  w.sizes = {120.0, 12.0};
+  w.resolution = 64;
+  w.low_resolution = 32;
+  w.choppiness = {-0.5, -0.5};
+  const Ocean ocean = realize_ocean(w, 1);
+  double held = 0.0;
+  for (const CascadeSpectra& c : ocean.cascades) {
+    for (const PatternSpectrum* s : {&c.low, &c.high}) {
+      held += static_cast<double>(s->h0.capacity() * sizeof(Complex) +
+                                  s->inverse_wavenumber.capacity() * sizeof(double) +
+                                  s->omega.capacity() * sizeof(double));
+    }
+  }
+  for (const CascadeFields& f : synthesize_ocean(ocean, 1.5, 1)) {
+    for (const std::vector<double>& v : f.values) {
+      held += static_cast<double>(v.capacity() * sizeof(double));
+    }
+  }
+  const double estimate = wave_grid_bytes(w);
+  // The estimate also counts h(k, t), the packed transform and its copies (transient) and all
+  // eight fields on both grids (a multi-resolution ocean keeps three of them on the coarse grid
+  // only), so it lies above what stays held, but within a factor of 2.5 (2.33 here).
+  CHECK(estimate >= held);
+  CHECK(estimate <= 2.5 * held);
+}
+
+TEST_CASE("memory: render_scene refuses a scene over the limit before it allocates") {
+  // Eight 8192² cascades: 160 B per cell of two grids each, 160 GiB of wave grids. The check
+  // comes first, so the test allocates nothing large (and finishes at once).
+  const Scene scene = parse_scene(nlohmann::json::parse(R"({"waves": {"resolution": 8192,
+      "cascades": {"sizes": [900, 500, 300, 200, 100, 50, 20, 10]}}})"));
+  CHECK(render_memory_estimate(scene, {}).items.front().bytes == 8.0 * 2 * 8192.0 * 8192 * 160);
+  std::string message;
+  try {
+    (void)render_scene(scene, RenderOutputOptions{});
+  } catch (const MemoryLimitError& e) {
+    message = e.what();
+  }
+  CHECK(message.rfind("needs an estimated 163", 0) == 0);
+  CHECK(message.find("(largest: wave grids 163840 MiB,") != std::string::npos);
+  CHECK(message.find("over the limit of 8192 MiB; raise it with --max-memory") !=
+        std::string::npos);
+}
