@@ -24,7 +24,9 @@ inline constexpr double kMaxMaxMemory = 1024.0 * 1024.0 * 1024.0 * kMebibyte;
 
 // A byte count in MiB for messages: "12.5 MiB" (one decimal; "0.1 MiB" at least).
 inline std::string mebibytes(double bytes) {
-  const double tenths = static_cast<double>(static_cast<long long>(bytes / kMebibyte * 10.0 + 0.5));
+  // Rounded to tenths by truncation (no libm), clamped below the range of long long.
+  const double scaled = std::min(bytes / kMebibyte * 10.0 + 0.5, 9.0e18);
+  const double tenths = static_cast<double>(static_cast<long long>(scaled));
   return shortest_number((tenths < 1.0 && bytes > 0.0 ? 1.0 : tenths) / 10.0) + " MiB";
 }
 
