@@ -503,9 +503,9 @@ sed 's/"resolution": 128/"resolution": 256/' "$tmp/memory.json" >"$tmp/memory256
 estimate=$(sed -n 's/^oceanref: needs an estimated \([0-9.]*\) MiB.*/\1/p' "$tmp/err")
 peak=$(peak_bytes fields "$tmp/memory256.json" --threads 2 -o "$tmp/fields.exr")
 check_estimate fields "$(awk -v m="$estimate" 'BEGIN { print m * 1048576 }')" "$peak"
-expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers 104 MiB, sample fragments 80 MiB, radiance hash input 12 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
+expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers \(render.width x render.height\) 104 MiB, sample fragments \(render.width x render.height x render.samples_per_pixel\) 80 MiB, radiance hash input \(render.width x render.height\) 12 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
 [ -e "$tmp/refused.exr" ] && fail "a render refused for memory wrote its output"
-expect 2 "^oceanref: needs an estimated .* MiB of memory \(largest: wave grids .*over the limit of 16 MiB; raise it with --max-memory" fields "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 16M
+expect 2 "^oceanref: needs an estimated .* MiB of memory \(largest: wave grids \(waves.resolution, waves.low_resolution, waves.cascades\) .*over the limit of 16 MiB; raise it with --max-memory" fields "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 16M
 expect 2 "^oceanref: CANDIDATE: .*memory.exr: cannot read the EXR file: part 0: 1024 x 512 pixels of 3 channels need 6 MiB, over the 3.8 MiB left of the reading limit \(--max-memory\)" compare "$tmp/memory.exr" "$tmp/memory.exr" --max-memory 16M
 expect 0 'pass, failing pixels 0%' compare "$tmp/memory.exr" "$tmp/memory.exr" --max-memory 32M
 # A header attribute claiming more bytes than the file holds is refused before OpenEXR allocates

@@ -97,7 +97,8 @@ TEST_CASE("memory: render_scene refuses a scene over the limit before it allocat
     message = e.what();
   }
   CHECK(message.rfind("needs an estimated 163", 0) == 0);
-  CHECK(message.find("(largest: wave grids 163840 MiB,") != std::string::npos);
+  CHECK(message.find("(largest: wave grids (waves.resolution, waves.low_resolution, "
+                     "waves.cascades) 163840 MiB,") != std::string::npos);
   CHECK(message.find("over the limit of 8192 MiB; raise it with --max-memory") !=
         std::string::npos);
 }

@@ -97,13 +97,14 @@ MemoryEstimate fields_memory_estimate(const Scene& scene) {
   // each value as float, as double and in the two hash inputs (8 + 4 bytes).
   const double values = (10.0 * cascades + 8.0) * cells;
   const double foam = scene.foam.steps > 0 ? 2.0 * (cascades + 1.0) * cells * sizeof(double) : 0.0;
-  return {{{"wave grids", wave_grid_bytes(scene.waves)},
-           {"output channels", values * (sizeof(float) + sizeof(double))},
-           {"hash input", values * (sizeof(double) + sizeof(float))},
-           {"combined fields", cells * sizeof(PointFields)},
-           {"evolved spectra", 2.0 * cascades * cells * sizeof(Complex)},
-           {"temporaries (Jacobian, foam, a sum channel)", 3.0 * cells * sizeof(double)},
-           {"foam accumulation", foam}}};
+  const std::string grids = " (waves.resolution, waves.cascades)";
+  return {{{kWaveGridsItem, wave_grid_bytes(scene.waves)},
+           {"output channels" + grids, values * (sizeof(float) + sizeof(double))},
+           {"hash input" + grids, values * (sizeof(double) + sizeof(float))},
+           {"combined fields (waves.resolution)", cells * sizeof(PointFields)},
+           {"evolved spectra" + grids, 2.0 * cascades * cells * sizeof(Complex)},
+           {"temporaries (waves.resolution)", 3.0 * cells * sizeof(double)},
+           {"foam accumulation (waves.foam.steps)", foam}}};
 }
 
 FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,

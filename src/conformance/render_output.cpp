@@ -76,12 +76,16 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
   // Per pixel: radiance, the four terms, normal, x0, the lighting error; depth and coverage.
   const double pixel_bytes = 8 * sizeof(Vec3) + 2 * sizeof(double);
   const double channels = options.aov ? 26 : 3;
-  return {{{"wave grids", wave_grid_bytes(scene.waves)},
-           {"projected grid", vertices * vertex_bytes},
-           {"sample fragments", samples * sizeof(Fragment)},
-           {"pixel buffers", pixels * pixel_bytes},
-           {"EXR channels", pixels * channels * sizeof(float)},
-           {"radiance hash input", pixels * sizeof(Vec3)}}};
+  // Each item names the scene keys that size it (the scene-file contract: a size that would
+  // exceed memory is rejected naming its keys).
+  const std::string image = " (render.width x render.height)";
+  return {{{kWaveGridsItem, wave_grid_bytes(scene.waves)},
+           {"projected grid (grid.columns x grid.rows)", vertices * vertex_bytes},
+           {"sample fragments (render.width x render.height x render.samples_per_pixel)",
+            samples * sizeof(Fragment)},
+           {"pixel buffers" + image, pixels * pixel_bytes},
+           {"EXR channels" + image, pixels * channels * sizeof(float)},
+           {"radiance hash input" + image, pixels * sizeof(Vec3)}}};
 }
 
 RenderedScene render_scene(const Scene& scene, const RenderOutputOptions& options) {

@@ -53,6 +53,9 @@ struct Ocean {
 // spectrum (h0, 1/k, ω), h(k, t), the packed transform and its copies, the eight
 // fields. For the memory checks (core/memory.h).
 double wave_grid_bytes(const WaveSettings& settings);
+// Its name in a memory estimate, with the scene keys that size it.
+inline constexpr const char* kWaveGridsItem =
+    "wave grids (waves.resolution, waves.low_resolution, waves.cascades)";
 
 // λ_min for a spectrum: 0 for Unified (it models capillary waves), 1.73 cm otherwise.
 double default_minimum_wavelength(SpectrumModel model);
