@@ -8,8 +8,10 @@
 # its type (MULTILAYER or IMAGE), its layers and passes, and every pass's pixels (through a
 # compositor File Output node) or, for a single-layer image, image.pixels. Then compares with
 # what OpenImageIO's Python module reads from FILE: every channel of every part must be in
-# Blender at its own size with bit-identical values. Prints one line per file and a FAIL line
-# per missing or wrong channel.
+# Blender with bit-identical values, at its own size or, for a part smaller than part 0 (a
+# `c<i>.low` part), padded to part 0's size (Blender sizes every pass like part 0) with the
+# values in the top-left block. Prints one line per file, a PADDED line per padded channel and a
+# FAIL line per missing or wrong channel.
 #
 # Exit 0 when Blender sees every channel of every FILE with the right values, 1 when it does
 # not (or Blender fails), 2 on bad usage, 77 (skip) when blender or OpenImageIO's Python module

@@ -12,8 +12,10 @@ Two modes, used by tools/blender_check.sh:
   python3 tools/blender_read_exr.py compare FILE OUTDIR [BLENDER_LOG]
       With OpenImageIO's Python module: read every part and channel of FILE, work out where
       Blender should put each channel (the rule below), and check that Blender's output holds
-      every channel with the part's size and bit-identical values (NaN matches NaN; the
-      compositor copies float32 values without arithmetic, so any difference is an error).
+      every channel with bit-identical values (NaN matches NaN; the compositor copies float32
+      values without arithmetic, so any difference is an error), at the part's size or, for a
+      part smaller than part 0, padded to part 0's size (reported as PADDED, with the corner
+      where the values are and what the rest holds).
       Exit 0 when every channel is seen with the right values, 1 otherwise.
 
 Blender 3.4's rule (source/blender/imbuf/intern/openexr/openexr_api.cpp): a file is multilayer
@@ -208,6 +210,7 @@ def compare(path, outdir, log_path=None):
           % (path, len(parts), channels, report["type"], report["size"],
              report.get("layers", "-")))
     seen = 0
+    padded = []  # channels Blender holds padded to part 0's size, values identical
     if not multilayer:
         if report["type"] == "MULTILAYER":
             problems.append("Blender reads it as MULTILAYER, expected a single-layer image")
@@ -264,6 +267,16 @@ def compare(path, outdir, log_path=None):
                 if pix is None:
                     problems.append("%s: the compositor gives no data" % where)
                 elif pix.shape[:2] != (h, w):
+                    block = padded_block(pix, slot, want)
+                    if pix.shape[:2] == (part0["height"], part0["width"]) and block:
+                        # Blender sizes every pass like part 0: a smaller part arrives padded,
+                        # its values bit-identical in one corner block.
+                        padded.append("%s: padded to part 0's %dx%d, the values identical in "
+                                      "the %s %dx%d block, %s elsewhere"
+                                      % (where, pix.shape[1], pix.shape[0], block[0], w, h,
+                                         block[1]))
+                        seen += 1
+                        continue
                     extra = ""
                     if (h, w) != (part0["height"], part0["width"]):
                         extra = " (Blender sizes every pass like part 0, %dx%d)" % (
@@ -280,11 +293,31 @@ def compare(path, outdir, log_path=None):
                             if re.search(r"multilayer read|OpenEXR|can't|cannot|ERROR", line)})
         for line in notes[:12]:
             print("  blender said: %s" % line)
+    for p in padded:
+        print("  PADDED %s" % p)
     for p in problems:
         print("  FAIL %s" % p)
-    print("%s: Blender sees %d of %d channel(s) with identical values: %s"
-          % (path, seen, channels, "OK" if not problems else "FAIL"))
+    print("%s: Blender sees %d of %d channel(s) with identical values%s: %s"
+          % (path, seen, channels,
+             " (%d of them padded to part 0's size)" % len(padded) if padded else "",
+             "OK" if not problems else "FAIL"))
     return 0 if not problems and seen == channels else 1
+
+
+def padded_block(pix, slot, want):
+    """Where a smaller part's values sit in Blender's larger pass (as OpenImageIO reads Blender's
+    output: top row first): ("top-left" or "bottom-left", what the rest holds), or None."""
+    import numpy as np
+
+    h, w = want.shape
+    if slot >= pix.shape[2] or pix.shape[0] < h or pix.shape[1] < w:
+        return None
+    for corner, rows in (("top-left", slice(0, h)), ("bottom-left", slice(pix.shape[0] - h, None))):
+        if same_values(pix[rows, :w, slot], want):
+            rest = pix[:, :, slot].copy()
+            rest[rows, :w] = 0.0
+            return corner, "zeros" if not np.any(rest) else "non-zero values"
+    return None
 
 
 def read_blender_pass(path):
