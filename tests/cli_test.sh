@@ -389,10 +389,10 @@ expect 2 "no threshold for channel 'B'" compare "$tmp/r2.exr" "$tmp/r1.exr" --pr
 # --suggest: from two runs, rules for every field kind; the written profile accepts the runs.
 expect 0 '^wrote .*suggested.json \(8 channel rules from 2 runs\)' compare --suggest \
   "$tmp/f32.exr" "$tmp/f32.exr" "$tmp/gold.exr" -o "$tmp/suggested.json"
-grep -q '"match": "c\*.slope_x"' "$tmp/suggested.json" || fail "--suggest: no c*.slope_x rule"
+grep -q '"match": "c\*\.slope_x\.V"' "$tmp/suggested.json" || fail "--suggest: no c*.slope_x.V rule"
 expect 0 '^result: pass' compare "$tmp/f32.exr" "$tmp/gold.exr" --profile "$tmp/suggested.json"
 printf '# runs\nf32.exr gold.exr\n' >"$tmp/runs.txt"
-expect 0 '"match": "c\*.ddx_dz"' compare --suggest --list "$tmp/runs.txt"
+expect 0 '"match": "c\*\.ddx_dz\.V"' compare --suggest --list "$tmp/runs.txt"
 expect 2 '--suggest.*non-finite|--suggest' compare --suggest "$tmp/gold.exr"
 expect 2 '--yes' golden update --root reference
 

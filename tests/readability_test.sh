@@ -105,7 +105,8 @@ readable "$tmp/aov.exr" 1 "${render_attributes[@]:1}" \
   'channel list: R, G, B, depth, coverage, foam.R, foam.G, foam.B, lighting_error.R, '
 readable "$tmp/preview.png" 1 '24 x +14, 3 channel, uint8 png'
 
-# 2. The fields: parts c<i> (N_h) and c<i>.low (N_l) per cascade, and sum.
+# 2. The fields: parts c<i> (N_h) and c<i>.low (N_l) per cascade, and sum; every channel is a
+# field name plus ".V", every unit attribute is named by the field (docs/FILES.md).
 run fields "$tmp/scene.json" -o "$tmp/fields.exr" --threads 2
 fields_common=("oceanref.commit: \"$commit\"" 'oceanref.scene_sha256: "[0-9a-f]{64}"'
   'oceanref.scene: "\{"atmosphere"' 'oceanref.seed: "1"' 'oceanref.time_s: "0"'
@@ -113,11 +114,11 @@ fields_common=("oceanref.commit: \"$commit\"" 'oceanref.scene_sha256: "[0-9a-f]{
   'oceanref.index_convention: "pixel \(column m, row n\)')
 readable "$tmp/fields.exr" 9 "${fields_common[@]}" \
   'subimage +0: +32 x +32, 7 channel' \
-  'channel list: c0.ddx_dx, c0.ddx_dz, c0.ddz_dz, c0.foam, c0.jacobian, c0.slope_x, c0.slope_z$' \
-  'subimage +1: +16 x +16, 3 channel' 'channel list: c0.disp_x, c0.disp_z, c0.height$' \
+  'channel list: c0.ddx_dx.V, c0.ddx_dz.V, c0.ddz_dz.V, c0.foam.V, c0.jacobian.V, c0.slope_x.V, c0.slope_z.V$' \
+  'subimage +1: +16 x +16, 3 channel' 'channel list: c0.disp_x.V, c0.disp_z.V, c0.height.V$' \
   'name: "c3.low"' 'oceanref.L_m: "800"' 'oceanref.N: "16"' \
   'subimage +8: +32 x +32, 8 channel' \
-  'channel list: sum.foam, sum.height, sum.jacobian, sum.normal_x, sum.normal_y, sum.normal_z, sum.slope_x, sum.slope_z$'
+  'channel list: sum.foam.V, sum.height.V, sum.jacobian.V, sum.normal_x.V, sum.normal_y.V, sum.normal_z.V, sum.slope_x.V, sum.slope_z.V$'
 
 # 3. Every earlier stage, one part per cascade and grid.
 for stage in spectrum h0 omega hkt fields; do
@@ -127,13 +128,13 @@ stage_common=("oceanref.commit: \"$commit\"" 'oceanref.time_s: "2.5"'
   'oceanref.index_convention: "pixel \(column a, row b\) holds the integer wavevector'
   'oceanref.band_rad_per_m: "0,0.12566370614359174"' 'subimage +1: +16 x +16')
 readable "$tmp/spectrum.exr" 8 "${stage_common[@]}" 'oceanref.stage: "spectrum"' \
-  'channel list: c0.in_band, c0.theta, c0.variance$' 'oceanref.units.c0.low.variance: "m\^2"' \
+  'channel list: c0.in_band.V, c0.theta.V, c0.variance.V$' 'oceanref.units.c0.low.variance: "m\^2"' \
   'oceanref.units.c0.theta: "m\^4"'
-readable "$tmp/h0.exr" 8 "${stage_common[@]}" 'channel list: c2.h0.im, c2.h0.re$' \
+readable "$tmp/h0.exr" 8 "${stage_common[@]}" 'channel list: c2.h0.im.V, c2.h0.re.V$' \
   'oceanref.units.c2.h0.re: "m"'
-readable "$tmp/omega.exr" 8 "${stage_common[@]}" 'channel list: c1.k, c1.kx, c1.kz, c1.omega$' \
+readable "$tmp/omega.exr" 8 "${stage_common[@]}" 'channel list: c1.k.V, c1.kx.V, c1.kz.V, c1.omega.V$' \
   'oceanref.units.c1.omega: "rad/s"'
-readable "$tmp/hkt.exr" 8 "${stage_common[@]}" 'channel list: c3.low.hkt.im, c3.low.hkt.re$'
+readable "$tmp/hkt.exr" 8 "${stage_common[@]}" 'channel list: c3.low.hkt.im.V, c3.low.hkt.re.V$'
 readable "$tmp/fields.exr" 9 'oceanref.time_s: "2.5"' 'oceanref.stage: "fields"'
 
 # The worked example of docs/BACKENDS.md: one wave component reproduced by hand from the stages.

@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "conformance/channel_name.h"
 #include "conformance/compare.h"
 #include "conformance/fields_output.h"
 #include "conformance/float32_backend.h"
@@ -146,7 +147,7 @@ TEST_CASE("compare: channels are matched by name or alias, alpha ignored, subset
   CHECK(is_alpha_channel("A"));
   CHECK(is_alpha_channel("rgba.A"));
   CHECK(is_alpha_channel("diffuse.alpha"));
-  CHECK_FALSE(is_alpha_channel("c0.height"));
+  CHECK_FALSE(is_alpha_channel("c0.height.V"));
   const ExrPart g = part({{"R", 1, {1.0f}}, {"G", 1, {2.0f}}, {"B", 1, {3.0f}}}, 1, 1);
   // Lower-case names and an alpha channel (whose value would fail).
   const ExrPart c =
@@ -207,18 +208,18 @@ TEST_CASE("compare: parts are matched by name and level") {
 }
 
 TEST_CASE("compare: profiles give per-channel thresholds; --suggest derives them") {
-  CHECK(glob_match("c*.height", "c12.height"));
-  CHECK_FALSE(glob_match("c*.height", "c1.slope_x"));
+  CHECK(glob_match("c*.height.V", "c12.height.V"));
+  CHECK_FALSE(glob_match("c*.height.V", "c1.slope_x.V"));
   CHECK(glob_match("?", "R"));
   CHECK(glob_match("*", ""));
   const ThresholdProfile p = parse_profile(
-      R"({"name": "t", "channels": [{"match": "c*.height", "rel": 0.1, "floor": 1},
+      R"({"name": "t", "channels": [{"match": "c*.height.V", "rel": 0.1, "floor": 1},
                                     {"match": "*", "part": "x", "abs": 2}]})",
       "test");
-  CHECK(threshold_for(p, "", "c3.height").relative == 0.1);
-  CHECK(threshold_for(p, "", "c3.height").floor == 1.0);
+  CHECK(threshold_for(p, "", "c3.height.V").relative == 0.1);
+  CHECK(threshold_for(p, "", "c3.height.V").floor == 1.0);
   CHECK(threshold_for(p, "x", "anything").absolute == 2.0);
-  CHECK_THROWS_WITH_AS(threshold_for(p, "", "c3.slope_x"), doctest::Contains("'c3.slope_x'"),
+  CHECK_THROWS_WITH_AS(threshold_for(p, "", "c3.slope_x.V"), doctest::Contains("'c3.slope_x.V'"),
                        std::invalid_argument);
   CHECK_THROWS_WITH_AS(parse_profile(R"({"channels": [{"match": "a", "rell": 1}]})", "f"),
                        doctest::Contains("'rell'"), std::invalid_argument);
@@ -302,6 +303,21 @@ TEST_CASE("float32 backend: every stage passes its shipped profile; perturbed st
       }
     }
     CHECK(rounded);
+    // Every channel is a field name plus ".V" (conformance/channel_name.h), on oceanref's side
+    // and on the backend's (compare_parts refuses a candidate channel without a counterpart);
+    // the unit attributes are keyed by the field name.
+    std::size_t named = 0;
+    for (const ExrPart& p : golden) {
+      for (const ExrChannel& c : p.image.channels) {
+        CAPTURE(c.name);
+        REQUIRE(c.name.ends_with(".V"));
+        const std::string field = field_name_of_channel(c.name);
+        CHECK(field.size() + 2 == c.name.size());
+        CHECK(p.image.attributes.count("oceanref.units." + field) == 1);
+        ++named;
+      }
+    }
+    CHECK(named > 0);
     // Perturbed stages fail the profile, in every channel of cascade 0 that the defect reaches:
     // Θ without the polar Jacobian 1/k (every stage but omega), one wave's phase flipped (h0 of
     // cascade 0's strongest wave negated: h0, hkt, fields), the conjugate term dropped and the
@@ -330,8 +346,8 @@ TEST_CASE("float32 backend: every stage passes its shipped profile; perturbed st
         if (p.name != "c0") continue;
         for (const ChannelResult& c : p.channels) {
           CAPTURE(c.golden_name);
-          if (c.golden_name == "c0.in_band" || c.golden_name == "c0.kx" ||
-              c.golden_name == "c0.kz" || c.golden_name == "c0.k")
+          if (c.golden_name == "c0.in_band.V" || c.golden_name == "c0.kx.V" ||
+              c.golden_name == "c0.kz.V" || c.golden_name == "c0.k.V")
             continue;
           CHECK_FALSE(c.pass);
           // One wave: exactly its entry fails (in hkt also its conjugate partner's).
@@ -439,7 +455,7 @@ TEST_CASE("SSIM: 1 for identical images, the closed form for constant ones, mono
   CHECK(small.parts[0].ssim.applies);
   CHECK_FALSE(small.parts[0].ssim.computed);
   CHECK(small.pass);
-  const ExrPart field = part({{"c0.height", 1, std::vector<float>(16 * 16, 1.0f)}}, 16, 16);
+  const ExrPart field = part({{"c0.height.V", 1, std::vector<float>(16 * 16, 1.0f)}}, 16, 16);
   CHECK_FALSE(run(field, field).parts[0].ssim.applies);
 }
 
@@ -460,7 +476,7 @@ TEST_CASE("SSIM: a profile's min_ssim fails a part below it; parse errors name t
   nan.image.channels[0].values[3] = kNaN;
   CHECK_FALSE(compare_parts({g}, {nan}, {}, p).pass);
   // min_ssim without any part that has R, G, B: refused.
-  const ExrPart field = part({{"c0.height", 1, std::vector<float>(16 * 16, 1.0f)}}, 16, 16);
+  const ExrPart field = part({{"c0.height.V", 1, std::vector<float>(16 * 16, 1.0f)}}, 16, 16);
   CHECK_THROWS_WITH_AS(compare_parts({field}, {field}, {}, p), doctest::Contains("min_ssim"),
                        std::invalid_argument);
   CHECK(parse_profile(R"({"default": {"rel": 1}, "min_ssim": 0.98})", "t").min_ssim == 0.98);

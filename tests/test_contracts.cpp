@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 
+#include "conformance/channel_name.h"
 #include "conformance/fields_output.h"
 #include "conformance/golden.h"
 #include "conformance/render_output.h"
@@ -128,26 +129,39 @@ TEST_CASE("fields file: parts, unique channel names, hashes of the doubles and t
   REQUIRE(f.parts.size() == 2);
   CHECK(f.parts[0].name == "c0");
   CHECK(f.parts[1].name == "sum");
-  std::set<std::string> names;
+  std::set<std::string> names;  // field names: the channel names without ".V"
   std::size_t channels = 0;
   for (const ExrPart& p : f.parts) {
     CHECK(p.image.attributes.at("oceanref.scene_sha256") == sha256_hex(scene.canonical));
     for (const ExrChannel& c : p.image.channels) {
-      names.insert(c.name);
+      // Blender's layer.pass.channel: every channel ends in the one-letter id ".V".
+      REQUIRE(c.name.ends_with(".V"));
+      const std::string field = c.name.substr(0, c.name.size() - 2);
+      CHECK(field_name_of_channel(c.name) == field);
+      CHECK(exr_channel_name(field) == c.name);
+      names.insert(field);
       ++channels;
-      CHECK(p.image.attributes.count("oceanref.units." + c.name) == 1);
+      // Unit attributes are named by the field, not the channel.
+      CHECK(p.image.attributes.count("oceanref.units." + field) == 1);
+      CHECK(p.image.attributes.count("oceanref.units." + c.name) == 0);
     }
   }
   CHECK(names.size() == channels);
-  // The float32 hash, written out: every channel in name order, its name, a zero byte, its
-  // values as binary32 little-endian.
+  // 8 fields, Jacobian and foam of c0; 8 channels of sum.
+  CHECK(channels == 18);
+  for (const char* field : {"c0.height", "c0.ddx_dz", "c0.foam", "sum.normal_x", "sum.foam"}) {
+    CHECK(names.count(field) == 1);
+  }
+  // The float32 hash, written out: every field in field-name order, its field name (without
+  // ".V", as before the suffix: the manifest's hashes did not change), a zero byte, its values
+  // as binary32 little-endian.
   std::vector<std::uint8_t> bytes;
   for (const std::string& name : names) {
     bytes.insert(bytes.end(), name.begin(), name.end());
     bytes.push_back(0);
     for (const ExrPart& p : f.parts) {
       for (const ExrChannel& c : p.image.channels) {
-        if (c.name != name) continue;
+        if (c.name != exr_channel_name(name)) continue;
         for (const float v : c.values) append_bytes(bytes, v);
       }
     }

@@ -7,7 +7,7 @@
 #      oceanref's (`oceanref fields SCENE --stage S --time T -o GOLD.exr`, the golden a backend
 #      author compares with);
 #   2. per stage `oceanref compare --suggest --list RUNS.txt --safety 4` (floor 1 x RMS): R = 4 x
-#      the largest relative error measured in each channel group (c*.height, c*.h0.re, ...);
+#      the largest relative error measured in each channel group (c*.height.V, c*.h0.re.V, ...);
 #   3. the stage, a description and the scenes and times added to each profile; then the
 #      per-stage percentiles of every run (p50 … max of e, the largest over a stage's channels
 #      and runs) printed as a markdown table (the figures docs/BACKENDS.md quotes);
@@ -89,7 +89,7 @@ what = {
     "h0": "h0(k) [m] (the counter-based Gaussian draws times sqrt(Theta dk^2))",
     "omega": "omega(|k|) [rad/s] and kx, kz, |k| [rad/m]",
     "hkt": "h(k, t) [m] (eq. 4.7, float phases omega*t)",
-    "fields": "the raw wave fields c<i>.height ... c<i>.ddx_dz (h(k, t), the multipliers and the "
+    "fields": "the raw wave fields c<i>.height.V ... c<i>.ddx_dz.V (h(k, t), the multipliers and the "
               "inverse FFT in float32)",
 }[stage]
 description = (

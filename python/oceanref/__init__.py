@@ -4,10 +4,11 @@ The library, not the command line: spectra, the wave fields of a scene, sky and 
 the reference lighting integrals with their error estimates, the reference image, and the
 conformance comparison. NumPy arrays in and out:
 
-* fields are float64 (the doubles behind the float32 channels of ``oceanref fields -o``);
+* fields are float64 (the doubles behind the float32 channels of ``oceanref fields -o``), keyed
+  by field name (``c0.height``; the file's channel is the field name plus ``.V``);
 * ``render`` returns float64 linear radiance (cd/m² per linear sRGB channel, D65): rounded to
   float32 it is bit for bit the R, G, B of ``oceanref render -o``;
-* ``read_exr`` returns float32 channels, as stored.
+* ``read_exr`` returns float32 channels, as stored, under the file's channel names.
 
 Units are SI (ω rad/s, k rad/m, S(ω) m²·s, Θ(k) m⁴, lengths m); angles are degrees at this
 interface. Invalid input raises ValueError with the message the command line prints
@@ -107,9 +108,10 @@ def _scene(scene):
 
 def fields(scene, time=None, threads=0):
     """Every wave field of the scene at ``time`` [s] (default: the scene's), as
-    ``oceanref fields -o`` writes them: {channel name: float64 array (N, N)}.
+    ``oceanref fields -o`` writes them: {field name: float64 array (N, N)}.
 
-    Names c<i>.height, disp_x, disp_z [m]; c<i>.slope_x, slope_z, ddx_dx, ddz_dz, ddx_dz,
+    Keys are field names, not the file's channel names: the channel of field ``c0.height`` in
+    the file (and in ``read_exr``) is ``c0.height.V`` (docs/FILES.md). Names c<i>.height, disp_x, disp_z [m]; c<i>.slope_x, slope_z, ddx_dx, ddz_dz, ddx_dz,
     jacobian, foam [1] per cascade i; sum.height, slope_x, slope_z, jacobian, normal_x,
     normal_y, normal_z, foam on cascade 0's footprint. Element [n, m] is the sample at
     x = m·L/N, z = n·L/N (docs/FILES.md). Rounded to float32 these are the EXR's channels bit for
@@ -128,8 +130,9 @@ def _hash_fields(values, dtype):
 
 def fields_sha256(values):
     """(fields_sha256, fields_f64_sha256) of a fields dict, as reference/golden/manifest.json
-    defines them (docs/FILES.md): every channel in name order, its name and a NUL byte, then its
-    values as little-endian float32 (first hash) or float64 (second)."""
+    defines them (docs/FILES.md): every field in name order, its field name (``c0.height``, not
+    the file's channel ``c0.height.V``) and a NUL byte, then its values as little-endian float32
+    (first hash) or float64 (second)."""
     return _hash_fields(values, "<f4"), _hash_fields(values, "<f8")
 
 
@@ -285,7 +288,7 @@ _NAMES = {1: ["Y"], 3: ["R", "G", "B"], 4: ["R", "G", "B", "A"]}
 def _parts(key, image):
     if isinstance(image, (str, _os.PathLike)):
         return _os.fspath(image)
-    if isinstance(image, dict):  # {channel: 2-D array}, e.g. a fields dict (one part)
+    if isinstance(image, dict):  # {channel: 2-D array}, e.g. a fields dict (field names, no .V)
         return [("", {k: _np.asarray(v) for k, v in image.items()})]
     a = _np.asarray(image)
     if a.ndim == 2:

@@ -84,8 +84,13 @@ def test_fields_equal_the_fields_exr(golden_scene, cli, tmp_path):
     f = oceanref.fields(path, threads=1)
     seen = set()
     for part in oceanref.read_exr(out):
-        for name, values in part["channels"].items():
+        for channel, values in part["channels"].items():
+            # The file's channel is the field name plus ".V" (Blender's layer.pass.channel);
+            # fields() and the unit attributes use the field name.
+            assert channel.endswith(".V"), channel
+            name = channel[:-len(".V")]
             assert np.array_equal(values, f[name].astype(np.float32)), name
+            assert part["attributes"]["oceanref.units." + name] in ("m", "1"), name
             seen.add(name)
     assert seen == set(f)
 

@@ -145,7 +145,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   float32->add_option("-o,--output", float32_flags->output, "candidate: OUT.exr")->required();
   float32
       ->add_option("--stage", float32_flags->stage,
-                   "spectrum, h0, omega, hkt or fields (the raw fields c<i>.<field>, no "
+                   "spectrum, h0, omega, hkt or fields (the raw fields c<i>.<field>.V, no "
                    "jacobian, foam or sum part)")
       ->check(CLI::IsMember({"spectrum", "h0", "omega", "hkt", "fields"}))
       ->capture_default_str();

@@ -58,16 +58,17 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
   auto* output = cmd->add_option(
       "-o,--output", flags->output,
       "OUT.exr, one part per cascade i and grid: c<i> (N_h x N_h) and, when low_resolution < "
-      "resolution, c<i>.low (N_l x N_l). Stage fields: channels c<i>.height, disp_x, disp_z (in "
-      "c<i>.low when multi-resolution), c<i>.slope_x, slope_z, ddx_dx, ddz_dz, ddx_dz, jacobian, "
-      "foam, and a part sum: sum.height, slope_x, slope_z, jacobian, normal_x, normal_y, "
-      "normal_z, foam");
+      "resolution, c<i>.low (N_l x N_l); every channel is a field name plus .V (Blender's "
+      "layer.pass.channel rule; docs/FILES.md). Stage fields: channels c<i>.height.V, disp_x.V, "
+      "disp_z.V (in c<i>.low when multi-resolution), c<i>.slope_x.V, slope_z.V, ddx_dx.V, "
+      "ddz_dz.V, ddx_dz.V, jacobian.V, foam.V, and a part sum: sum.height.V, slope_x.V, "
+      "slope_z.V, jacobian.V, normal_x.V, normal_y.V, normal_z.V, foam.V");
   cmd->add_option("--stage", flags->stage,
-                  "with -o: fields (default); spectrum (<part>.theta = Theta(k) [m^4], "
-                  "<part>.variance = Theta(k) dk^2 [m^2], <part>.in_band), h0 (<part>.h0.re, "
-                  ".im [m]), omega (<part>.omega [rad/s], .kx, .kz, .k [rad/m]) or hkt "
-                  "(<part>.hkt.re, .im [m] at --time) on each cascade's wavevector grid, k = 0 at "
-                  "pixel (0, 0), FFT order")
+                  "with -o: fields (default); spectrum (<part>.theta.V = Theta(k) [m^4], "
+                  "<part>.variance.V = Theta(k) dk^2 [m^2], <part>.in_band.V), h0 "
+                  "(<part>.h0.re.V, .im.V [m]), omega (<part>.omega.V [rad/s], .kx.V, .kz.V, .k.V "
+                  "[rad/m]) or hkt (<part>.hkt.re.V, .im.V [m] at --time) on each cascade's "
+                  "wavevector grid, k = 0 at pixel (0, 0), FFT order")
       ->check(CLI::IsMember({"spectrum", "h0", "omega", "hkt", "fields"}));
   auto* at = cmd->add_option("--at", flags->at,
                              "x,z [m] -> CSV cascade,field,fft,direct,difference (FFT grid: exact "

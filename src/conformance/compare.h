@@ -203,7 +203,7 @@ std::vector<ExrPart> read_parts_for_compare(const std::string& path,
                                             double max_bytes = kDefaultMaxMemory / 4.0);
 
 // --suggest: per-channel thresholds from a set of candidate runs. Channels are grouped by their
-// name with every run of digits replaced by '*' (c0.height, c1.height → c*.height), over all
+// name with every run of digits replaced by '*' (c0.height.V, c1.height.V → c*.height.V), over all
 // parts (the rule's part pattern is "*"); per group R = safety · (largest e over all runs and
 // channels of the group), A = 0, U = 0, S = 0, F = floor. Groups where every run matched exactly
 // get R = 0.

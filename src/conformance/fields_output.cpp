@@ -7,6 +7,7 @@
 #include <string_view>
 #include <utility>
 
+#include "conformance/channel_name.h"
 #include "conformance/provenance.h"
 #include "core/format.h"
 #include "io/sha256.h"
@@ -72,6 +73,8 @@ std::string field_unit(const std::string& field) {
   return field == "height" || field == "disp_x" || field == "disp_z" ? "m" : "1";
 }
 
+// Adds field `name` (e.g. "c0.height") as channel exr_channel_name(name) ("c0.height.V"); its
+// unit attribute and its entry in `exact` (the hash input) keep the field name.
 void add_channel(ExrImage& image, std::map<std::string, std::vector<double>>& exact,
                  const std::string& name, const std::string& unit,
                  const std::vector<double>& values) {
@@ -84,7 +87,7 @@ void add_channel(ExrImage& image, std::map<std::string, std::vector<double>>& ex
                                  (std::isfinite(values[i]) ? " (beyond float32's range)" : ""));
     }
   }
-  image.channels.push_back({name, 1, to_float(values)});
+  image.channels.push_back({exr_channel_name(name), 1, to_float(values)});
   image.attributes["oceanref.units." + name] = unit;
   exact[name] = values;
 }
@@ -159,7 +162,7 @@ FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,
     for (std::size_t i = 0; i < fields.size(); ++i) {
       const std::string name = "c" + std::to_string(i) + ".foam";
       for (ExrChannel& c : parts[high_parts[i]].image.channels) {
-        if (c.name == name) c.values = to_float(foam.cascades[i]);
+        if (c.name == exr_channel_name(name)) c.values = to_float(foam.cascades[i]);
       }
       exact[name] = foam.cascades[i];
     }
@@ -193,7 +196,8 @@ FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,
     add_channel(sum_image, exact, std::string("sum.normal_") + "xyz"[axis], "1", v);
   }
   sum_channel("foam", "1", &PointFields::foam);
-  // The hashes: every channel of every part in name order (names are unique across parts).
+  // The hashes: every field of every part in field-name order (names are unique across parts),
+  // over the field names without the channel suffix (channel_name.h), as before the suffix.
   std::vector<std::uint8_t> bytes;
   std::vector<std::uint8_t> bytes32;
   std::size_t count = 0;

@@ -15,10 +15,11 @@
 namespace oceanref {
 
 // The fields file: one part per cascade and grid (c<i>, c<i>.low) and the combined fields
-// (sum), every channel at full resolution; the SHA-256 of the float32 channels and of the
-// doubles behind them: every channel of every part in name order (names are unique across
-// parts), each its name, a zero byte and its values, row-major, as binary32 (sha256) or binary64
-// (f64_sha256) little-endian.
+// (sum), every field at full resolution as channel exr_channel_name(field) ("c0.height.V",
+// conformance/channel_name.h); the SHA-256 of the float32 channels and of the doubles behind
+// them: every field of every part in field-name order (names are unique across parts), each its
+// field name (without ".V"), a zero byte and its values, row-major, as binary32 (sha256) or
+// binary64 (f64_sha256) little-endian.
 struct FieldsImage {
   std::vector<ExrPart> parts;
   std::string sha256;
@@ -33,7 +34,8 @@ FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,
                          const std::function<void(const std::string&)>& log = {});
 
 // An earlier stage (not Stage::fields) on every cascade's grids, one part per cascade and grid
-// (c<i>, c<i>.low), channels <part>.<stage channel> (waves/stages.h), at scene.time.
+// (c<i>, c<i>.low), fields <part>.<stage channel> (waves/stages.h) as channels
+// exr_channel_name(field) ("c0.low.h0.re.V"), at scene.time.
 std::vector<ExrPart> stage_image(const Scene& scene, const Ocean& ocean, Stage stage, int threads);
 
 // One field at a point (x, z) [m] at scene.time: from the FFT grids (exact at nodes, bilinear

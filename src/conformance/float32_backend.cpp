@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "conformance/channel_name.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
 #include "spectrum/frequency_spectra.h"
@@ -392,8 +393,8 @@ ComplexF evolve(ComplexF h0, ComplexF h0_partner, float omega, double time, Floa
 }
 
 std::string part_channel(std::size_t cascade, Field field) {
-  return "c" + std::to_string(cascade) + "." +
-         std::string(kFieldNames[static_cast<std::size_t>(field)]);
+  return exr_channel_name("c" + std::to_string(cascade) + "." +
+                          std::string(kFieldNames[static_cast<std::size_t>(field)]));
 }
 }  // namespace
 
@@ -586,7 +587,8 @@ std::vector<ExrPart> float32_stage_parts(const WaveSettings& waves, Stage stage,
       const std::string part_name = name + (p == &c.low ? ".low" : "");
       ExrImage& image = new_part(part_name, p->pattern.resolution).image;
       const auto add = [&](const std::string& channel, std::vector<float> values) {
-        image.channels.push_back({part_name + "." + channel, 1, std::move(values)});
+        image.channels.push_back(
+            {exr_channel_name(part_name + "." + channel), 1, std::move(values)});
       };
       const auto add_complex = [&](const std::string& channel, const std::vector<ComplexF>& z) {
         std::vector<float> re(z.size()), im(z.size());

@@ -100,10 +100,11 @@ std::vector<float> float32_field(const PatternSpectrum& s, double time, Field fi
 
 // One stage of the scene's waves as EXR parts in the layout of `oceanref fields --stage X`: one
 // part per cascade i and grid, "c<i>" (N_h) and, when N_l < N_h, "c<i>.low" (N_l); channels
-// "<part>.<channel>" with the channel names of waves/stages.h (spectrum: theta, variance,
+// "<part>.<channel>.V" with the channel names of waves/stages.h (spectrum: theta, variance,
 // in_band; h0: h0.re, h0.im; omega: omega, kx, kz, k; hkt: hkt.re, hkt.im) and for the fields
-// stage the raw fields "c<i>.<field>" (η, D_x, D_z in c<i>.low when multi-resolution; no
-// Jacobian, foam or sum part). Throws std::invalid_argument as check_float32_support.
+// stage the raw fields "c<i>.<field>.V" (η, D_x, D_z in c<i>.low when multi-resolution; no
+// Jacobian, foam or sum part): exr_channel_name (conformance/channel_name.h), as oceanref names
+// them. Throws std::invalid_argument as check_float32_support.
 std::vector<ExrPart> float32_stage_parts(const WaveSettings& waves, Stage stage, double time,
                                          Float32Defect defect = Float32Defect::none);
 

@@ -22,7 +22,7 @@ inline constexpr std::array<const char*, 5> kStageNames{"spectrum", "h0", "omega
 
 // One real channel of a stage on a pattern's grid (N×N doubles, [b·N + a]).
 struct StageChannel {
-  std::string name;  // e.g. "variance", "h0.re"
+  std::string name;  // e.g. "variance", "h0.re" (a file's channel: "c0.h0.re.V", docs/FILES.md)
   std::string unit;  // SI: "m^2", "m", "rad/s", "rad/m", "1"
   std::vector<double> values;
 };
