@@ -121,7 +121,8 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
     scene.image.samples_per_axis = axis;
   }
   if (!(max_memory >= kMinMaxMemory && max_memory <= kMaxMaxMemory)) {
-    throw ArgumentError("max_memory", "must be in [16777216, 1125899906842624] bytes, got " +
+    throw ArgumentError("max_memory", "must be in [" + shortest_number(kMinMaxMemory) + ", " +
+                                          shortest_number(kMaxMaxMemory) + "] bytes, got " +
                                           shortest_number(max_memory));
   }
   RenderOutputOptions options;

@@ -151,9 +151,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
                   "refuse inputs whose pixels need more than a quarter of SIZE each: bytes or K, "
                   "M, G, T (binary), e.g. 20G; default 8G");
   return [f, floor, min_ssim](std::ostream& out) {
-    const double max_memory = f->max_memory.empty()
-                                  ? kDefaultMaxMemory
-                                  : parse_memory_size("--max-memory", f->max_memory);
+    const double max_memory = max_memory_flag(f->max_memory);
     // The report folder is created if missing; its index.html must not be an input either.
     const std::filesystem::path report_page = std::filesystem::path(f->report) / "index.html";
     std::vector<std::string> inputs = f->files;

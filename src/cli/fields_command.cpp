@@ -96,9 +96,7 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
     if (!flags->time.empty()) {
       scene.time = parse_number_in("--time", flags->time, -1e7, 1e7, " s");
     }
-    require_within(fields_memory_estimate(scene),
-                   flags->max_memory.empty() ? kDefaultMaxMemory
-                                             : parse_memory_size("--max-memory", flags->max_memory),
+    require_within(fields_memory_estimate(scene), max_memory_flag(flags->max_memory),
                    "--max-memory");
     progress("oceanref fields", "realizing the spectrum");
     const Ocean ocean = realize_ocean(scene.waves, threads);

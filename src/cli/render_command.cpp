@@ -72,8 +72,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     check_output_paths({{"--output", f->output}, {"--png", f->png}}, {f->scene});
     RenderOutputOptions options;
     options.threads = resolve_threads(f->threads);
-    if (!f->max_memory.empty())
-      options.max_memory = parse_memory_size("--max-memory", f->max_memory);
+    options.max_memory = max_memory_flag(f->max_memory);
     const Scene scene = load_scene(f->scene);
     options.samples_per_axis = samples_per_axis(f->spp);
     options.aov = f->aov;

@@ -61,6 +61,10 @@ double peak_memory_bytes() {
   return static_cast<double>(usage.ru_maxrss) * 1024.0;  // Linux: kibibytes
 }
 
+double max_memory_flag(const std::string& text) {
+  return text.empty() ? kDefaultMaxMemory : parse_memory_size("--max-memory", text);
+}
+
 double parse_memory_size(const std::string& flag, std::string_view text) {
   std::string number(text);
   double unit = 1.0;

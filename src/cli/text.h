@@ -45,6 +45,8 @@ double parse_number_in(const std::string& flag, std::string_view text, double lo
 // --max-memory: bytes, or a number with a binary suffix K, M, G or T ("512M", "1.5G"), in
 // [kMinMaxMemory, kMaxMaxMemory] (core/memory.h).
 double parse_memory_size(const std::string& flag, std::string_view text);
+// The value of a --max-memory option: kDefaultMaxMemory when not given ("").
+double max_memory_flag(const std::string& text);
 // The process's peak resident memory so far (bytes; getrusage), for the render report.
 double peak_memory_bytes();
 // The help text of --max-memory.

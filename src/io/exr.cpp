@@ -252,16 +252,16 @@ void read_part(Imf::MultiPartInputFile& file, int index, std::vector<ExrPart>& o
       throw std::runtime_error("deep data (" + header.type() +
                                ") is not supported: only flat images are read");
     }
-    const Imath::Box2i data = header.dataWindow();
-    const double width = static_cast<double>(data.max.x) - data.min.x + 1.0;
     if (!header.hasTileDescription()) {
+      const Imath::Box2i window = header.dataWindow();
       // OpenEXR's line buffer (one compressed block of rows), released once the part is read.
-      const double line_buffer = channel_bytes(header, width, rows_per_block(header.compression()));
-      reserve(budget, line_buffer, "the line buffer of " + size_text(header, data));
-      reserve_image(budget, header, data);
+      const double line_buffer =
+          channel_bytes(header, static_cast<double>(window.max.x) - window.min.x + 1.0,
+                        rows_per_block(header.compression()));
+      reserve(budget, line_buffer, "the line buffer of " + size_text(header, window));
+      reserve_image(budget, header, window);
       Imf::InputPart part(file, index);
       Imf::FrameBuffer frame;
-      const Imath::Box2i window = header.dataWindow();
       ExrPart p{name, 0, 0, prepare_image(header, window, false, frame)};
       part.setFrameBuffer(frame);
       part.readPixels(window.min.y, window.max.y);
