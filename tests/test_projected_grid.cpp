@@ -214,7 +214,9 @@ TEST_CASE("rendered waves: covered iff the ray can meet the surface; horizon; st
     const Scene scene = wave_scene(v, "bicubic", "surface");
     const Ocean ocean = realize_ocean(scene.waves, 1);
     RenderJob job = scene_render_job(scene, ocean, 2);
+    job.layers = true;  // the depth layer
     const RenderedImage image = render(job, {0.01, 0.005});
+    REQUIRE(image.depth.size() == image.radiance.size());
     const double h = image.displacement_bound;
     CAPTURE(h);
     REQUIRE(h > 0.1);

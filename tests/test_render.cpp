@@ -37,6 +37,7 @@ std::unique_ptr<Setup> prepare(const Scene& scene, int threads) {
   s->scene = scene;
   s->ocean = realize_ocean(scene.waves, 1);
   s->job = scene_render_job(s->scene, s->ocean, threads);
+  s->job.layers = true;  // the tests read the terms, depth and normals
   return s;
 }
 }  // namespace
@@ -164,6 +165,28 @@ TEST_CASE("render determinism: identical pixels for 1, 2, 3 and 8 threads and ac
     CHECK(b.radiance == a.radiance);
     CHECK(b.depth == a.depth);
   }
+}
+
+TEST_CASE("the layers are filled only when asked, and never change the radiance") {
+  const Scene scene = small_scene(R"({"position": [0, 6, 0], "look_at": [0, 1, 50]})");
+  auto s = prepare(scene, 2);
+  const SlopeVariance u = unresolved_slope_variance(s->job, scene.waves);
+  const RenderedImage with = render(s->job, u);
+  s->job.layers = false;
+  const RenderedImage without = render(s->job, u);
+  const std::size_t pixels = with.radiance.size();
+  for (const auto* layer : {&with.sun, &with.sky, &with.sea, &with.foam, &with.normal, &with.x0}) {
+    CHECK(layer->size() == pixels);
+  }
+  CHECK(with.depth.size() == pixels);
+  for (const auto* layer :
+       {&without.sun, &without.sky, &without.sea, &without.foam, &without.normal, &without.x0}) {
+    CHECK(layer->empty());
+  }
+  CHECK(without.depth.empty());
+  CHECK(without.radiance == with.radiance);
+  CHECK(without.coverage == with.coverage);
+  CHECK(without.lighting_error == with.lighting_error);
 }
 
 TEST_CASE(

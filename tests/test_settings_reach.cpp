@@ -241,7 +241,8 @@ class Pipeline {
       }
     }
     out.fields = sha256_hex(bytes);
-    const RenderJob job = scene_render_job(scene, ocean, 2);
+    RenderJob job = scene_render_job(scene, ocean, 2);
+    job.layers = true;  // the foam layer
     // The BRDF roughness depends on the waves, the time and how the fields are read
     // (slope_variance_budget): cached by those, since it costs most of a tiny render.
     const std::string uk = wk + "|" + std::to_string(scene.time) + "|" +
@@ -259,6 +260,7 @@ class Pipeline {
     }
     out.pixels = sha256_hex(bytes);
     double foamy = 0.0, sea = 0.0;
+    REQUIRE(image.foam.size() == image.coverage.size());
     for (std::size_t i = 0; i < image.foam.size(); ++i) {
       foamy += image.foam[i][0] > 0.0 ? 1.0 : 0.0;
       sea += image.coverage[i] > 0.0 ? 1.0 : 0.0;

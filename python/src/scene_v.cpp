@@ -134,6 +134,7 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
     const Ocean ocean = realize_ocean(scene.waves, threads);
     RenderJob job = scene_render_job(scene, ocean, threads);
     job.estimate_fast_error = aov;  // as `oceanref render --aov`
+    job.layers = aov;
     const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
     image = render(job, unresolved);
   }

@@ -73,8 +73,10 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
   // Per vertex: x0, the displaced position, its projection and two triangles of indices.
   const double vertex_bytes = sizeof(glm::dvec2) + sizeof(glm::dvec3) + sizeof(ScreenVertex) +
                               2 * sizeof(std::array<std::uint32_t, 3>);
-  // Per pixel: radiance, the four terms, normal, x0, the lighting error; depth and coverage.
-  const double pixel_bytes = 8 * sizeof(Vec3) + 2 * sizeof(double);
+  // Per pixel: radiance, the lighting error and coverage; with --aov also the four terms,
+  // normal, x0 and depth (RenderJob::layers).
+  const double pixel_bytes =
+      options.aov ? 8 * sizeof(Vec3) + 2 * sizeof(double) : 2 * sizeof(Vec3) + sizeof(double);
   const double channels = options.aov ? 26 : 3;
   // Each item names the scene keys that size it (the scene-file contract: a size that would
   // exceed memory is rejected naming its keys).
@@ -100,6 +102,7 @@ RenderedScene render_scene(const Scene& scene, const RenderOutputOptions& option
   r.settings = p->scene.image;
   // The error layer of a fast render is its difference from the reference (computed as well).
   p->job.estimate_fast_error = options.aov;
+  p->job.layers = options.aov;
   r.image = render(p->job, p->unresolved);
   const RenderedImage& image = r.image;
   ExrImage& exr = r.exr;

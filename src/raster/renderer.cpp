@@ -67,10 +67,9 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
                             static_cast<std::size_t>(i);
       const glm::dvec2 x0 = g.grid.base[k];
-      const PointFields p = fields_at(job, fields, x0);
-      // Displaced vertex (Gamper eq. 4.19–4.20, 4.24): x0 + Σ u_i D_i, height Σ η_i.
-      g.world[k] = {x0.x + p.raw[static_cast<std::size_t>(Field::displacement_x)], p.height,
-                    x0.y + p.raw[static_cast<std::size_t>(Field::displacement_z)]};
+      const DisplacedPoint p = displaced_point(*job.ocean, fields.grids, fields.evolved, x0.x, x0.y,
+                                               job.shading.interpolation, job.shading.normals);
+      g.world[k] = {p.x, p.height, p.z};
       const glm::dvec3 s = project(job.camera, g.world[k]);
       g.screen[k] = {s.x, s.y, s.z};
     }
@@ -190,15 +189,18 @@ RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, Rend
     return allocate_buffer<Vec3>(pixels, std::string("the per-pixel ") + layer + " buffer");
   };
   image.radiance = pixel_buffer("radiance");
-  image.sun = pixel_buffer("sun");
-  image.sky = pixel_buffer("sky");
-  image.sea = pixel_buffer("sea");
-  image.foam = pixel_buffer("foam");
-  image.depth = allocate_buffer<double>(pixels, "the per-pixel depth buffer");
-  image.normal = pixel_buffer("normal");
-  image.x0 = pixel_buffer("x0");
   image.coverage = allocate_buffer<double>(pixels, "the per-pixel coverage buffer");
   image.lighting_error = pixel_buffer("lighting error");
+  const bool layers = job.layers;
+  if (layers) {
+    image.sun = pixel_buffer("sun");
+    image.sky = pixel_buffer("sky");
+    image.sea = pixel_buffer("sea");
+    image.foam = pixel_buffer("foam");
+    image.depth = allocate_buffer<double>(pixels, "the per-pixel depth buffer");
+    image.normal = pixel_buffer("normal");
+    image.x0 = pixel_buffer("x0");
+  }
   std::atomic<long> unconverged{0};
   std::atomic<long> evaluations{0};
   const int s = job.samples_per_axis;
@@ -225,25 +227,28 @@ RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, Rend
           const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
           for (std::size_t c = 0; c < 3; ++c) {
             image.radiance[pixel][c] += per_sample * p.radiance[c];
-            image.sun[pixel][c] += per_sample * p.lighting.sun[c];
-            image.sky[pixel][c] += per_sample * p.lighting.sky[c];
-            image.sea[pixel][c] += per_sample * p.lighting.sea[c];
-            image.foam[pixel][c] += per_sample * p.whitecap_coverage * p.foam[c];
             image.lighting_error[pixel][c] += per_sample * p.lighting_error[c];
           }
           if (!p.lighting.converged) ++row_unconverged;
           row_evaluations += p.lighting.evaluations;
+          if (p.hit) ++hits;
+          if (!layers) continue;
+          for (std::size_t c = 0; c < 3; ++c) {
+            image.sun[pixel][c] += per_sample * p.lighting.sun[c];
+            image.sky[pixel][c] += per_sample * p.lighting.sky[c];
+            image.sea[pixel][c] += per_sample * p.lighting.sea[c];
+            image.foam[pixel][c] += per_sample * p.whitecap_coverage * p.foam[c];
+          }
           if (p.hit) {
             image.depth[pixel] += p.depth;
             for (std::size_t c = 0; c < 3; ++c) image.normal[pixel][c] += p.normal[c];
             image.x0[pixel][0] += p.x0.x;
             image.x0[pixel][2] += p.x0.y;
-            ++hits;
           }
         }
       }
       image.coverage[pixel] = hits * per_sample;
-      if (hits > 0) {
+      if (layers && hits > 0) {
         image.depth[pixel] /= hits;
         for (std::size_t c = 0; c < 3; ++c) {
           image.normal[pixel][c] /= hits;

@@ -32,13 +32,16 @@ struct RenderJob {
   // lighting error is |fast − reference| + the reference's estimate (reference accuracy always
   // reports its estimate).
   bool estimate_fast_error = false;
+  // Also fill the per-pixel layers sun, sky, sea, foam, depth, normal and x0 (`render --aov`);
+  // without them the image holds radiance, coverage and lighting_error only.
+  bool layers = false;
   // Called with the finished share of image rows (0…1) now and then during shading, from any
   // worker thread; for progress display only.
   std::function<void(double)> progress;
 };
 
 // Per-pixel outputs (box-filtered over the samples); `coverage` is the share of samples that hit
-// the sea.
+// the sea. The layers sun … x0 are empty unless the job asked for them (RenderJob::layers).
 struct RenderedImage {
   int width = 0;
   int height = 0;

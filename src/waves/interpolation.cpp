@@ -54,76 +54,116 @@ std::array<double, 4> catmull_rom_weight_derivatives(double t) {
           0.5 * ((-9.0 * t + 8.0) * t + 1.0), 0.5 * (3.0 * t - 2.0) * t};
 }
 
+GridStencil grid_stencil(int n, double size, double x, double z, Interpolation mode) {
+  OCEANREF_EXPECTS(n >= 1 && size > 0.0 && mode != Interpolation::direct,
+                   "a periodic grid of N >= 1 cells and positive size read by bilinear or bicubic "
+                   "interpolation; N = " +
+                       std::to_string(n) + ", size " + std::to_string(size));
+  const GridPoint p = locate(n, size, x, z);
+  GridStencil s;
+  s.mode = mode;
+  s.resolution = n;
+  s.inverse_spacing = n / size;
+  s.at_node = p.fu == 0.0 && p.fv == 0.0;
+  s.fu = p.fu;
+  s.fv = p.fv;
+  for (std::size_t i = 0; i < 4; ++i) {
+    s.columns[i] = wrap_index(p.m + static_cast<int>(i) - 1, n);
+    s.rows[i] = wrap_index(p.n + static_cast<int>(i) - 1, n);
+  }
+  if (mode == Interpolation::bicubic) {
+    s.wu = catmull_rom_weights(p.fu);
+    s.wv = catmull_rom_weights(p.fv);
+    s.du = catmull_rom_weight_derivatives(p.fu);
+    s.dv = catmull_rom_weight_derivatives(p.fv);
+  }
+  return s;
+}
+
+namespace {
+// A grid of the stencil's resolution.
+void expect_stencil_grid(const std::vector<double>& grid, const GridStencil& s) {
+  OCEANREF_EXPECTS(grid.size() == grid_cells(s.resolution),
+                   "a periodic grid of N x N values; N = " + std::to_string(s.resolution) + ", " +
+                       std::to_string(grid.size()) + " values");
+}
+
+// The bicubic sums Σ_j w_v Σ_i w_u g (the value), with d/du and d/dv weights for the gradient.
+struct BicubicSums {
+  double value = 0.0, d_du = 0.0, d_dv = 0.0;
+};
+template <bool kGradient>
+BicubicSums bicubic_sums(const std::vector<double>& grid, const GridStencil& s) {
+  BicubicSums sums;
+  for (std::size_t j = 0; j < 4; ++j) {
+    double line = 0.0, line_du = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const double g = grid[grid_offset(s.columns[i], s.rows[j], s.resolution)];
+      line += s.wu[i] * g;
+      if constexpr (kGradient) line_du += s.du[i] * g;
+    }
+    sums.value += s.wv[j] * line;
+    if constexpr (kGradient) {
+      sums.d_du += s.wv[j] * line_du;
+      sums.d_dv += s.dv[j] * line;
+    }
+  }
+  return sums;
+}
+}  // namespace
+
+double read_value(const std::vector<double>& grid, const GridStencil& s) {
+  expect_stencil_grid(grid, s);
+  const auto at = [&](std::size_t i, std::size_t j) {
+    return grid[grid_offset(s.columns[i], s.rows[j], s.resolution)];
+  };
+  if (s.at_node) return at(1, 1);  // exactly the node value
+  if (s.mode == Interpolation::bicubic) return bicubic_sums<false>(grid, s).value;
+  return (1.0 - s.fv) * ((1.0 - s.fu) * at(1, 1) + s.fu * at(2, 1)) +
+         s.fv * ((1.0 - s.fu) * at(1, 2) + s.fu * at(2, 2));
+}
+
+GridSample read_gradient(const std::vector<double>& grid, const GridStencil& s) {
+  expect_stencil_grid(grid, s);
+  const auto at = [&](std::size_t i, std::size_t j) {
+    return grid[grid_offset(s.columns[i], s.rows[j], s.resolution)];
+  };
+  GridSample r;
+  if (s.mode != Interpolation::bicubic) {
+    // The gradient of the cell at the lower left of the point (a node starts its cell).
+    const double f00 = at(1, 1), f10 = at(2, 1), f01 = at(1, 2), f11 = at(2, 2);
+    r.value = s.at_node ? f00
+                        : (1.0 - s.fv) * ((1.0 - s.fu) * f00 + s.fu * f10) +
+                              s.fv * ((1.0 - s.fu) * f01 + s.fu * f11);
+    r.d_dx = ((1.0 - s.fv) * (f10 - f00) + s.fv * (f11 - f01)) * s.inverse_spacing;
+    r.d_dz = ((1.0 - s.fu) * (f01 - f00) + s.fu * (f11 - f10)) * s.inverse_spacing;
+    return r;
+  }
+  const BicubicSums sums = bicubic_sums<true>(grid, s);
+  r.value = s.at_node ? at(1, 1) : sums.value;
+  r.d_dx = sums.d_du * s.inverse_spacing;
+  r.d_dz = sums.d_dv * s.inverse_spacing;
+  return r;
+}
+
 double sample_periodic(const std::vector<double>& grid, int n, double size, double x, double z) {
   expect_grid(grid, n, size);
-  const GridPoint p = locate(n, size, x, z);
-  const int m1 = (p.m + 1) % n;
-  const int n1 = (p.n + 1) % n;
-  const auto at = [&](int m, int k) { return grid[grid_offset(m, k, n)]; };
-  if (p.fu == 0.0 && p.fv == 0.0) return at(p.m, p.n);  // exactly the node value
-  return (1.0 - p.fv) * ((1.0 - p.fu) * at(p.m, p.n) + p.fu * at(m1, p.n)) +
-         p.fv * ((1.0 - p.fu) * at(p.m, n1) + p.fu * at(m1, n1));
+  return read_value(grid, grid_stencil(n, size, x, z, Interpolation::bilinear));
 }
 
 double sample_periodic_bicubic(const std::vector<double>& grid, int n, double size, double x,
                                double z) {
   expect_grid(grid, n, size);
-  const GridPoint p = locate(n, size, x, z);
-  if (p.fu == 0.0 && p.fv == 0.0) return grid[grid_offset(p.m, p.n, n)];
-  const std::array<double, 4> wu = catmull_rom_weights(p.fu);
-  const std::array<double, 4> wv = catmull_rom_weights(p.fv);
-  double sum = 0.0;
-  for (std::size_t j = 0; j < 4; ++j) {
-    const int row = wrap_index(p.n + static_cast<int>(j) - 1, n);
-    double line = 0.0;
-    for (std::size_t i = 0; i < 4; ++i) {
-      line += wu[i] * grid[grid_offset(wrap_index(p.m + static_cast<int>(i) - 1, n), row, n)];
-    }
-    sum += wv[j] * line;
-  }
-  return sum;  // the value of sample_periodic_gradient, without the derivatives
+  return read_value(grid, grid_stencil(n, size, x, z, Interpolation::bicubic));
 }
 
 GridSample sample_periodic_gradient(const std::vector<double>& grid, int n, double size, double x,
                                     double z, Interpolation mode) {
   expect_grid(grid, n, size);
-  const GridPoint p = locate(n, size, x, z);
-  const double inverse_spacing = n / size;
-  const auto at = [&](int m, int k) {
-    return grid[grid_offset(wrap_index(m, n), wrap_index(k, n), n)];
-  };
-  GridSample s;
-  if (mode != Interpolation::bicubic) {
-    const double f00 = at(p.m, p.n), f10 = at(p.m + 1, p.n);
-    const double f01 = at(p.m, p.n + 1), f11 = at(p.m + 1, p.n + 1);
-    s.value = p.fu == 0.0 && p.fv == 0.0 ? f00
-                                         : (1.0 - p.fv) * ((1.0 - p.fu) * f00 + p.fu * f10) +
-                                               p.fv * ((1.0 - p.fu) * f01 + p.fu * f11);
-    s.d_dx = ((1.0 - p.fv) * (f10 - f00) + p.fv * (f11 - f01)) * inverse_spacing;
-    s.d_dz = ((1.0 - p.fu) * (f01 - f00) + p.fu * (f11 - f10)) * inverse_spacing;
-    return s;
-  }
-  const std::array<double, 4> wu = catmull_rom_weights(p.fu);
-  const std::array<double, 4> wv = catmull_rom_weights(p.fv);
-  const std::array<double, 4> du = catmull_rom_weight_derivatives(p.fu);
-  const std::array<double, 4> dv = catmull_rom_weight_derivatives(p.fv);
-  double sum = 0.0, sum_dx = 0.0, sum_dz = 0.0;
-  for (std::size_t j = 0; j < 4; ++j) {
-    const int row = p.n + static_cast<int>(j) - 1;
-    double line = 0.0, line_dx = 0.0;
-    for (std::size_t i = 0; i < 4; ++i) {
-      const double g = at(p.m + static_cast<int>(i) - 1, row);
-      line += wu[i] * g;
-      line_dx += du[i] * g;
-    }
-    sum += wv[j] * line;
-    sum_dx += wv[j] * line_dx;
-    sum_dz += dv[j] * line;
-  }
-  s.value = p.fu == 0.0 && p.fv == 0.0 ? at(p.m, p.n) : sum;
-  s.d_dx = sum_dx * inverse_spacing;
-  s.d_dz = sum_dz * inverse_spacing;
-  return s;
+  return read_gradient(
+      grid, grid_stencil(
+                n, size, x, z,
+                mode == Interpolation::bicubic ? Interpolation::bicubic : Interpolation::bilinear));
 }
 
 AxisTransfer linear_axis_transfer(double theta) {

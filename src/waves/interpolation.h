@@ -48,6 +48,27 @@ struct GridSample {
 GridSample sample_periodic_gradient(const std::vector<double>& grid, int resolution, double size,
                                     double x, double z, Interpolation mode);
 
+// Where a point falls on a periodic N×N grid of size L, with the interpolation weights there:
+// computed once per point and grid, then read for every field on that grid (read_value,
+// read_gradient: the same bits as sample_periodic, sample_periodic_bicubic and
+// sample_periodic_gradient, which locate the point each time).
+struct GridStencil {
+  Interpolation mode = Interpolation::bilinear;  // bilinear or bicubic
+  int resolution = 1;                            // N
+  double inverse_spacing = 1.0;                  // N/L [1/m]
+  bool at_node = false;                          // the point is a node (f_u = f_v = 0)
+  double fu = 0.0, fv = 0.0;                     // fractions across the cell
+  // Grid indices of the nodes −1, 0, 1, 2 per axis (wrapped); bilinear reads 0 and 1.
+  std::array<int, 4> columns{}, rows{};
+  // Catmull–Rom weights and their derivatives d/dt per axis (bicubic only).
+  std::array<double, 4> wu{}, wv{}, du{}, dv{};
+};
+GridStencil grid_stencil(int resolution, double size, double x, double z, Interpolation mode);
+// The interpolated value of `grid` (N×N values, N the stencil's) at the stencil's point.
+double read_value(const std::vector<double>& grid, const GridStencil& stencil);
+// The value and its exact first derivatives [per m].
+GridSample read_gradient(const std::vector<double>& grid, const GridStencil& stencil);
+
 // Catmull–Rom weights of the nodes −1, 0, 1, 2 at t ∈ [0, 1] and their derivatives d/dt.
 std::array<double, 4> catmull_rom_weights(double t);
 std::array<double, 4> catmull_rom_weight_derivatives(double t);

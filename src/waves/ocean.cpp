@@ -69,13 +69,17 @@ std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int
 
 std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, double x, double z,
                                                    Interpolation mode) {
+  // The point is located once per grid resolution (N_l and N_h), not once per field.
+  const Interpolation read =
+      mode == Interpolation::bicubic ? Interpolation::bicubic : Interpolation::bilinear;
+  const GridStencil low = grid_stencil(f.low_resolution, f.size, x, z, read);
+  const GridStencil high = f.high_resolution == f.low_resolution
+                               ? low
+                               : grid_stencil(f.high_resolution, f.size, x, z, read);
   std::array<double, kFieldCount> raw{};
   for (int q = 0; q < kFieldCount; ++q) {
-    const int n = is_low_resolution_field(Field(q)) ? f.low_resolution : f.high_resolution;
-    const auto& grid = f.values[static_cast<std::size_t>(q)];
-    raw[static_cast<std::size_t>(q)] = mode == Interpolation::bicubic
-                                           ? sample_periodic_bicubic(grid, n, f.size, x, z)
-                                           : sample_periodic(grid, n, f.size, x, z);
+    raw[static_cast<std::size_t>(q)] = read_value(f.values[static_cast<std::size_t>(q)],
+                                                  is_low_resolution_field(Field(q)) ? low : high);
   }
   return raw;
 }

@@ -7,9 +7,12 @@ namespace oceanref {
 
 CascadeSurface cascade_surface_from_grids(const CascadeFields& f, double x, double z,
                                           Interpolation mode) {
+  // η, D_x and D_z share the N_l grid: the point is located once.
+  const GridStencil stencil = grid_stencil(
+      f.low_resolution, f.size, x, z,
+      mode == Interpolation::bicubic ? Interpolation::bicubic : Interpolation::bilinear);
   const auto read = [&](Field q) {
-    return sample_periodic_gradient(f.values[static_cast<std::size_t>(q)], f.low_resolution, f.size,
-                                    x, z, mode);
+    return read_gradient(f.values[static_cast<std::size_t>(q)], stencil);
   };
   const GridSample eta = read(Field::height);
   const GridSample dx = read(Field::displacement_x);
@@ -53,6 +56,29 @@ PointFields combine_shading_at(const Ocean& ocean, const std::vector<CascadeFiel
     return combine_surface_at(ocean, fields, evolved, x, z, mode);
   }
   return combine_at(ocean, fields, evolved, x, z, mode);
+}
+
+DisplacedPoint displaced_point(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                               const std::vector<EvolvedCascade>& evolved, double x0, double z0,
+                               Interpolation mode, ShadingNormals normals) {
+  const auto index = [](Field q) { return static_cast<std::size_t>(q); };
+  if (mode == Interpolation::direct) {
+    const PointFields p = combine_shading_at(ocean, fields, evolved, x0, z0, mode, normals);
+    return {x0 + p.raw[index(Field::displacement_x)], p.height,
+            z0 + p.raw[index(Field::displacement_z)]};
+  }
+  OCEANREF_EXPECTS(fields.size() == ocean.cascades.size(), "one field set per cascade");
+  // Summed as add_cascade and add_cascade_surface do: cascade by cascade, from 0.
+  double height = 0.0, dx = 0.0, dz = 0.0;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const CascadeFields& f = fields[i];
+    const double u = ocean.cascades[i].choppiness;
+    const GridStencil stencil = grid_stencil(f.low_resolution, f.size, x0, z0, mode);
+    height += 1.0 * read_value(f.values[index(Field::height)], stencil);
+    dx += u * read_value(f.values[index(Field::displacement_x)], stencil);
+    dz += u * read_value(f.values[index(Field::displacement_z)], stencil);
+  }
+  return {x0 + dx, height, z0 + dz};
 }
 
 }  // namespace oceanref

@@ -53,4 +53,14 @@ PointFields combine_shading_at(const Ocean& ocean, const std::vector<CascadeFiel
                                const std::vector<EvolvedCascade>& evolved, double x, double z,
                                Interpolation mode, ShadingNormals normals);
 
+// The displaced point p(x0) = (x0 + Σu_i D_x,i, Σ η_i, z0 + Σu_i D_z,i) of the rasterized surface
+// (Gamper eq. 4.19–4.20, 4.24): the same bits as the height and displacement of
+// combine_shading_at, without the slopes (the projected grid's vertices need only these).
+struct DisplacedPoint {
+  double x = 0.0, height = 0.0, z = 0.0;
+};
+DisplacedPoint displaced_point(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                               const std::vector<EvolvedCascade>& evolved, double x0, double z0,
+                               Interpolation mode, ShadingNormals normals);
+
 }  // namespace oceanref
