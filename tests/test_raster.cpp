@@ -1,6 +1,7 @@
 // Camera, projected grid and rasterizer: hand-computed coverage, watertightness, perspective.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -38,6 +39,52 @@ TEST_CASE("rasterizer: coverage of a known triangle equals the hand-computed sam
       CAPTURE(x);
       CAPTURE(y);
       CHECK(hits[static_cast<std::size_t>(y * 6 + x)] == (x + y + 1 < 4 ? 1 : 0));
+    }
+  }
+}
+
+TEST_CASE("rasterizer: vertices far off screen cover what they should, and never overflow") {
+  // Such vertices come from grid points near the horizon; the row and column ranges must be
+  // clamped before they become ints (UndefinedBehaviorSanitizer checks the casts).
+  const SampleGrid grid{8, 6, 2};
+  for (const double far : {1e10, 1e100, 1e300}) {
+    CAPTURE(far);
+    // A triangle around the whole image: every sample, once — unless its area overflows (at
+    // 1e300), which skips it as degenerate.
+    const std::vector<ScreenVertex> around{{-far, -far, 1}, {far, -far, 1}, {0, far, 1}};
+    for (const int h : coverage(around, {{0, 1, 2}}, grid)) CHECK(h == (far < 1e150 ? 1 : 0));
+    // Triangles entirely beyond each side of the image: no sample.
+    for (const auto& v :
+         std::vector<std::vector<ScreenVertex>>{{{-far, 0, 1}, {-far / 2, 0, 1}, {-far, 5, 1}},
+                                                {{far / 2, 0, 1}, {far, 0, 1}, {far, 5, 1}},
+                                                {{0, -far, 1}, {5, -far, 1}, {0, -far / 2, 1}},
+                                                {{0, far / 2, 1}, {5, far, 1}, {0, far, 1}}}) {
+      for (const int h : coverage(v, {{0, 1, 2}}, grid)) CHECK(h == 0);
+    }
+  }
+}
+
+TEST_CASE("rasterizer: row bands give the fragments of one full pass, whatever their number") {
+  // A fan of triangles crossing many rows; bands of 1, 3 and 7 sample rows.
+  const SampleGrid grid{9, 7, 2};
+  std::vector<ScreenVertex> v{{4.5, 3.5, 2}};
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (std::uint32_t i = 0; i < 12; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 12.0;
+    v.push_back({4.5 + 6.0 * std::cos(a), 3.5 + 5.0 * std::sin(a), 2.0 + 0.1 * i});
+    triangles.push_back({0, i + 1, i == 11 ? 1 : i + 2});
+  }
+  std::vector<Fragment> whole(static_cast<std::size_t>(grid.columns() * grid.rows()));
+  rasterize(v, triangles, grid, 0, grid.rows(), 1e-9, whole);
+  for (const int band : {1, 3, 7}) {
+    std::vector<Fragment> banded(whole.size());
+    for (int first = 0; first < grid.rows(); first += band) {
+      rasterize(v, triangles, grid, first, std::min(first + band, grid.rows()), 1e-9, banded);
+    }
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      CHECK(banded[i].triangle == whole[i].triangle);
+      CHECK(banded[i].depth == whole[i].depth);
+      CHECK(banded[i].weights == whole[i].weights);
     }
   }
 }

@@ -55,6 +55,15 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
     const ScreenVertex& v1 = vertices[triangles[t][1]];
     const ScreenVertex& v2 = vertices[triangles[t][2]];
     if (!(v0.z > near && v1.z > near && v2.z > near)) continue;
+    // Sample rows the triangle can touch, within [first_row, last_row) (clamped as doubles, so
+    // that a vertex far off screen never overflows an int; a NaN fails the test).
+    const int s = grid.samples_per_axis;
+    const double lowest = std::ceil(std::min({v0.y, v1.y, v2.y}) * s - 0.5);
+    const double highest = std::floor(std::max({v0.y, v1.y, v2.y}) * s - 0.5) + 1.0;
+    if (!(lowest < last_row && highest > first_row)) continue;
+    const int row_begin = std::max(static_cast<int>(std::fmax(lowest, first_row)), first_row);
+    const int row_end = std::min(static_cast<int>(std::fmin(highest, last_row)), last_row);
+    if (row_begin >= row_end) continue;
     Point p[3] = {{v0.x, v0.y}, {v1.x, v1.y}, {v2.x, v2.y}};
     double z[3] = {v0.z, v1.z, v2.z};
     int order[3] = {0, 1, 2};
@@ -67,14 +76,6 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
     const double signed_area = std::fabs(area);
     const bool own_ab = owns_boundary(a, b), own_bc = owns_boundary(b, c),
                own_ca = owns_boundary(c, a);
-    // Sample rows the triangle can touch.
-    const double y_lo = std::min({a.y, b.y, c.y});
-    const double y_hi = std::max({a.y, b.y, c.y});
-    const int s = grid.samples_per_axis;
-    int row_begin = static_cast<int>(std::ceil(y_lo * s - 0.5));
-    int row_end = static_cast<int>(std::floor(y_hi * s - 0.5)) + 1;
-    row_begin = std::max(row_begin, first_row);
-    row_end = std::min(row_end, last_row);
     const Point edges[3][2] = {{a, b}, {b, c}, {c, a}};
     for (int row = row_begin; row < row_end; ++row) {
       const double sy = grid.sample_y(row);
@@ -93,8 +94,12 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
       }
       if (!(x_hi >= x_lo)) continue;
       // One sample of slack on each side; the edge functions decide exactly.
-      const int col_begin = std::max(0, static_cast<int>(std::floor(x_lo * s - 0.5)));
-      const int col_end = std::min(columns, static_cast<int>(std::ceil(x_hi * s - 0.5)) + 1);
+      // Clamped as doubles: a vertex far off screen never overflows an int.
+      const double last_column = columns;
+      const int col_begin =
+          static_cast<int>(std::fmin(std::fmax(0.0, std::floor(x_lo * s - 0.5)), last_column));
+      const int col_end =
+          static_cast<int>(std::fmax(std::fmin(last_column, std::ceil(x_hi * s - 0.5) + 1.0), 0.0));
       for (int col = col_begin; col < col_end; ++col) {
         const Point q{grid.sample_x(col), sy};
         const double e0 = edge_function(b, c, q);  // weight of a

@@ -140,10 +140,13 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
       static_cast<std::size_t>(grid.columns()) * static_cast<std::size_t>(grid.rows()),
       "the sample fragments (one per sample of the image)");
   if (!g.grid.visible) return fragments;
-  const int bands = std::max(1, job.threads);
-  parallel_for(bands, bands, [&](int band) {
-    const int first = grid.rows() * band / bands;
-    const int last = grid.rows() * (band + 1) / bands;
+  // Bands of sample rows handed out one at a time (parallel_for): the sea's triangles crowd
+  // near the horizon, so equal shares per thread would not be equal work. Each band walks every
+  // triangle, so bands are not too thin either: about 8 per thread.
+  const int bands = std::min(grid.rows(), 8 * std::max(1, job.threads));
+  parallel_for(bands, job.threads, [&](int band) {
+    const int first = static_cast<int>(static_cast<long>(grid.rows()) * band / bands);
+    const int last = static_cast<int>(static_cast<long>(grid.rows()) * (band + 1) / bands);
     rasterize(g.screen, g.triangles, grid, first, last, job.grid.near, fragments);
   });
   return fragments;
