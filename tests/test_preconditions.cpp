@@ -138,6 +138,13 @@ TEST_CASE("preconditions of the shading and raster stages fire on wrong calls") 
   std::vector<Fragment> too_few(99);
   CHECK_THROWS_AS(rasterize(vertices, {{0, 1, 2}}, samples, 0, 10, 0.1, too_few),
                   PreconditionError);
+  // A band of fragments (rows 5…9): rows outside it, or a band past the grid, are refused.
+  std::vector<Fragment> band(50);
+  CHECK_NOTHROW(rasterize(vertices, {{0, 1, 2}}, samples, 5, 10, 0.1, band, 5));
+  CHECK_THROWS_AS(rasterize(vertices, {{0, 1, 2}}, samples, 4, 10, 0.1, band, 5),
+                  PreconditionError);
+  CHECK_THROWS_AS(rasterize(vertices, {{0, 1, 2}}, samples, 5, 10, 0.1, band, 6),
+                  PreconditionError);
   // Projected grid settings.
   const Camera camera = make_camera({0, 5, 0}, {0, 0, 50}, {0, 1, 0}, 1.0, 32, 18);
   ProjectedGridSettings settings;

@@ -76,10 +76,21 @@ TEST_CASE("rasterizer: row bands give the fragments of one full pass, whatever t
   }
   std::vector<Fragment> whole(static_cast<std::size_t>(grid.columns() * grid.rows()));
   rasterize(v, triangles, grid, 0, grid.rows(), 1e-9, whole);
+  const auto columns = static_cast<std::size_t>(grid.columns());
   for (const int band : {1, 3, 7}) {
+    // Into one buffer of the whole grid, and into a buffer of the band alone (as a tile).
     std::vector<Fragment> banded(whole.size());
     for (int first = 0; first < grid.rows(); first += band) {
-      rasterize(v, triangles, grid, first, std::min(first + band, grid.rows()), 1e-9, banded);
+      const int last = std::min(first + band, grid.rows());
+      rasterize(v, triangles, grid, first, last, 1e-9, banded);
+      std::vector<Fragment> alone(static_cast<std::size_t>(last - first) * columns);
+      rasterize(v, triangles, grid, first, last, 1e-9, alone, first);
+      for (std::size_t i = 0; i < alone.size(); ++i) {
+        const Fragment& w = whole[static_cast<std::size_t>(first) * columns + i];
+        CHECK(alone[i].triangle == w.triangle);
+        CHECK(alone[i].depth == w.depth);
+        CHECK(alone[i].weights == w.weights);
+      }
     }
     for (std::size_t i = 0; i < whole.size(); ++i) {
       CHECK(banded[i].triangle == whole[i].triangle);

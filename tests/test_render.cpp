@@ -4,9 +4,11 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
+#include "core/check.h"
 #include "raster/renderer.h"
 #include "scene/scene.h"
 
@@ -187,6 +189,44 @@ TEST_CASE("the layers are filled only when asked, and never change the radiance"
   CHECK(without.radiance == with.radiance);
   CHECK(without.coverage == with.coverage);
   CHECK(without.lighting_error == with.lighting_error);
+}
+
+TEST_CASE("a band of rows renders the same bits as those rows of the whole image") {
+  const Scene scene = small_scene(R"({"position": [0, 6, 0], "look_at": [0, 1, 50]})");
+  auto s = prepare(scene, 2);
+  const SlopeVariance u = unresolved_slope_variance(s->job, scene.waves);
+  const RenderedImage whole = render(s->job, u);
+  const int h = whole.height;
+  REQUIRE(h >= 8);
+  int covered = 0;
+  for (const auto& [first, last] : {std::pair{0, 1}, std::pair{1, 4}, std::pair{4, h - 1},
+                                    std::pair{h - 1, h}, std::pair{2, h}}) {
+    CAPTURE(first);
+    CAPTURE(last);
+    s->job.first_row = first;
+    s->job.last_row = last;
+    const RenderedImage band = render(s->job, u);
+    REQUIRE(band.height == last - first);
+    REQUIRE(band.first_row == first);
+    REQUIRE(band.width == whole.width);
+    const auto offset = static_cast<std::size_t>(first) * static_cast<std::size_t>(whole.width);
+    for (std::size_t i = 0; i < band.radiance.size(); ++i) {
+      const std::size_t j = offset + i;
+      CHECK(band.radiance[i] == whole.radiance[j]);
+      CHECK(band.lighting_error[i] == whole.lighting_error[j]);
+      CHECK(band.coverage[i] == whole.coverage[j]);
+      CHECK(band.sky[i] == whole.sky[j]);
+      CHECK(band.depth[i] == whole.depth[j]);
+      CHECK(band.normal[i] == whole.normal[j]);
+      covered += band.coverage[i] > 0.0 ? 1 : 0;
+    }
+  }
+  CHECK(covered > 0);  // the bands see the sea
+  s->job.first_row = 3;
+  s->job.last_row = 3;
+  CHECK_THROWS_AS(render(s->job, u), PreconditionError);
+  s->job.last_row = h + 1;
+  CHECK_THROWS_AS(render(s->job, u), PreconditionError);
 }
 
 TEST_CASE(

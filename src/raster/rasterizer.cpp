@@ -36,16 +36,20 @@ bool owns_boundary(Point a, Point b) {
 
 void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
-               int first_row, int last_row, double near, std::vector<Fragment>& fragments) {
+               int first_row, int last_row, double near, std::vector<Fragment>& fragments,
+               int fragment_row) {
   const int columns = grid.columns();
-  OCEANREF_EXPECTS(
-      grid.samples_per_axis >= 1 && fragments.size() == static_cast<std::size_t>(columns) *
-                                                            static_cast<std::size_t>(grid.rows()),
-      "one fragment per sample of the grid: " + std::to_string(fragments.size()) + " for " +
-          std::to_string(columns) + " x " + std::to_string(grid.rows()));
-  OCEANREF_EXPECTS(0 <= first_row && first_row <= last_row && last_row <= grid.rows(),
+  const std::size_t width = static_cast<std::size_t>(columns);
+  OCEANREF_EXPECTS(grid.samples_per_axis >= 1 && columns >= 1 && fragments.size() % width == 0,
+                   "whole sample rows of fragments: " + std::to_string(fragments.size()) +
+                       " for rows of " + std::to_string(columns));
+  const int fragment_end = fragment_row + static_cast<int>(fragments.size() / width);
+  OCEANREF_EXPECTS(0 <= fragment_row && fragment_row <= first_row && first_row <= last_row &&
+                       last_row <= fragment_end && fragment_end <= grid.rows(),
                    "sample rows [" + std::to_string(first_row) + ", " + std::to_string(last_row) +
-                       ") inside [0, " + std::to_string(grid.rows()) + ")");
+                       ") inside the fragments' rows [" + std::to_string(fragment_row) + ", " +
+                       std::to_string(fragment_end) + ") inside [0, " +
+                       std::to_string(grid.rows()) + ")");
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     OCEANREF_EXPECTS(triangles[t][0] < vertices.size() && triangles[t][1] < vertices.size() &&
                          triangles[t][2] < vertices.size(),
@@ -113,7 +117,7 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
         const double lc = e2 / signed_area / zc;
         const double sum = la + lb + lc;
         const double depth = 1.0 / sum;
-        Fragment& f = fragments[static_cast<std::size_t>(row) * static_cast<std::size_t>(columns) +
+        Fragment& f = fragments[static_cast<std::size_t>(row - fragment_row) * width +
                                 static_cast<std::size_t>(col)];
         if (f.triangle >= 0 && !(depth < f.depth)) continue;
         f.depth = depth;

@@ -43,11 +43,13 @@ struct Fragment {
 };
 
 // Rasterizes triangles (vertex indices into `vertices`, in order) into the fragments of sample
-// rows [first_row, last_row) — disjoint row bands can run on different threads with identical
-// results. Triangles with a vertex at z ≤ near are skipped (the projected grid keeps the sea in
-// front of the camera).
+// rows [first_row, last_row) of `fragments`, which holds the rows [fragment_row, fragment_row +
+// fragments.size()/columns) of the grid (fragment_row ≤ first_row): disjoint row bands can run on
+// different threads, or in different processes, with identical results. Triangles with a vertex
+// at z ≤ near are skipped (the projected grid keeps the sea in front of the camera).
 void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
-               int first_row, int last_row, double near, std::vector<Fragment>& fragments);
+               int first_row, int last_row, double near, std::vector<Fragment>& fragments,
+               int fragment_row = 0);
 
 }  // namespace oceanref

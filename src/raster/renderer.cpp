@@ -135,21 +135,34 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
   return p;
 }
 
-std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const SampleGrid& grid) {
+// The fragments of the sample rows [first_row, last_row).
+std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const SampleGrid& grid,
+                                  int first_row, int last_row) {
+  const int rows = last_row - first_row;
   std::vector<Fragment> fragments = allocate_buffer<Fragment>(
-      static_cast<std::size_t>(grid.columns()) * static_cast<std::size_t>(grid.rows()),
+      static_cast<std::size_t>(grid.columns()) * static_cast<std::size_t>(rows),
       "the sample fragments (one per sample of the image)");
-  if (!g.grid.visible) return fragments;
+  if (!g.grid.visible || rows == 0) return fragments;
   // Bands of sample rows handed out one at a time (parallel_for): the sea's triangles crowd
   // near the horizon, so equal shares per thread would not be equal work. Each band walks every
   // triangle, so bands are not too thin either: about 8 per thread.
-  const int bands = std::min(grid.rows(), 8 * std::max(1, job.threads));
+  const int bands = std::min(rows, 8 * std::max(1, job.threads));
   parallel_for(bands, job.threads, [&](int band) {
-    const int first = static_cast<int>(static_cast<long>(grid.rows()) * band / bands);
-    const int last = static_cast<int>(static_cast<long>(grid.rows()) * (band + 1) / bands);
-    rasterize(g.screen, g.triangles, grid, first, last, job.grid.near, fragments);
+    const int first = first_row + static_cast<int>(static_cast<long>(rows) * band / bands);
+    const int last = first_row + static_cast<int>(static_cast<long>(rows) * (band + 1) / bands);
+    rasterize(g.screen, g.triangles, grid, first, last, job.grid.near, fragments, first_row);
   });
   return fragments;
+}
+
+// The job's pixel rows [first, last), checked.
+std::pair<int, int> job_rows(const RenderJob& job) {
+  const int last = job.last_row < 0 ? job.camera.height : job.last_row;
+  OCEANREF_EXPECTS(0 <= job.first_row && job.first_row < last && last <= job.camera.height,
+                   "pixel rows [" + std::to_string(job.first_row) + ", " + std::to_string(last) +
+                       ") of a nonempty band inside the " + std::to_string(job.camera.height) +
+                       " rows of the image");
+  return {job.first_row, last};
 }
 }  // namespace
 
@@ -173,17 +186,20 @@ RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, Rend
     if (times != nullptr) times->*stage += std::chrono::duration<double>(now - clock).count();
     clock = now;
   };
+  const auto [first_row, last_row] = job_rows(job);
   const FrameFields fields = frame_fields(job);
   lap(&RenderTimes::synthesis);
   RenderedImage image;
   image.width = job.camera.width;
-  image.height = job.camera.height;
+  image.height = last_row - first_row;
+  image.first_row = first_row;
   image.unresolved = unresolved;
   image.displacement_bound = height_bound(*job.ocean);
   const Geometry g = build_geometry(job, fields, image.displacement_bound);
   lap(&RenderTimes::grid);
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
-  const std::vector<Fragment> fragments = raster_pass(job, g, grid);
+  const int s = job.samples_per_axis;
+  const std::vector<Fragment> fragments = raster_pass(job, g, grid, first_row * s, last_row * s);
   lap(&RenderTimes::raster);
   const FrameLighting light = frame_lighting(job.sky, job.shading);
   const auto pixels =
@@ -206,11 +222,10 @@ RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, Rend
   }
   std::atomic<long> unconverged{0};
   std::atomic<long> evaluations{0};
-  const int s = job.samples_per_axis;
   const double per_sample = 1.0 / (s * s);
   std::atomic<int> rows_done{0};
   const int report_every = std::max(1, image.height / 50);
-  parallel_for(image.height, job.threads, [&](int y) {
+  parallel_for(image.height, job.threads, [&](int y) {  // y: the band's row
     long row_unconverged = 0;
     long row_evaluations = 0;
     for (int x = 0; x < image.width; ++x) {
@@ -220,11 +235,12 @@ RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, Rend
       int hits = 0;
       for (int b = 0; b < s; ++b) {
         for (int a = 0; a < s; ++a) {
-          const int row = y * s + b;
+          const int band_row = y * s + b;
+          const int row = first_row * s + band_row;  // of the image's sample grid
           const int column = x * s + a;
-          const Fragment& f =
-              fragments[static_cast<std::size_t>(row) * static_cast<std::size_t>(grid.columns()) +
-                        static_cast<std::size_t>(column)];
+          const Fragment& f = fragments[static_cast<std::size_t>(band_row) *
+                                            static_cast<std::size_t>(grid.columns()) +
+                                        static_cast<std::size_t>(column)];
           const glm::dvec3 ray =
               ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
           const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
@@ -308,7 +324,8 @@ void require_finite(const RenderedImage& image) {
   const auto fail = [&](std::size_t p, const std::string& buffer, const std::string& channel,
                         double value) {
     const std::size_t w = static_cast<std::size_t>(std::max(image.width, 1));
-    throw NonFiniteOutputError("pixel (" + std::to_string(p % w) + ", " + std::to_string(p / w) +
+    throw NonFiniteOutputError("pixel (" + std::to_string(p % w) + ", " +
+                               std::to_string(p / w + static_cast<std::size_t>(image.first_row)) +
                                "): " + buffer + channel + " is " + text(value) + " (coverage " +
                                (p < image.coverage.size() ? text(image.coverage[p]) : "?") +
                                "; terms: " + terms(p) + ")");
@@ -346,16 +363,17 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
   const FrameFields fields = frame_fields(job);
   const Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
-  const std::vector<Fragment> fragments = raster_pass(job, g, grid);
+  const int s = job.samples_per_axis;
+  // The pixel's sample rows only (the fragments of a full pass there, bit for bit).
+  const std::vector<Fragment> fragments = raster_pass(job, g, grid, pixel_y * s, pixel_y * s + s);
   const FrameLighting light = frame_lighting(job.sky, job.shading);
   std::vector<SampleProbe> out;
-  const int s = job.samples_per_axis;
   for (int b = 0; b < s; ++b) {
     for (int a = 0; a < s; ++a) {
       const int row = pixel_y * s + b;
       const int column = pixel_x * s + a;
       const Fragment& f =
-          fragments[static_cast<std::size_t>(row) * static_cast<std::size_t>(grid.columns()) +
+          fragments[static_cast<std::size_t>(b) * static_cast<std::size_t>(grid.columns()) +
                     static_cast<std::size_t>(column)];
       const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
       SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);

@@ -28,6 +28,11 @@ struct RenderJob {
   ShadingSettings shading;
   int samples_per_axis = 2;  // S: S×S stratified samples per pixel
   int threads = 1;
+  // The pixel rows rendered, [first_row, last_row) of the camera's image (last_row −1: to the
+  // bottom): a band of the image, each pixel the same bits as in the whole image (tiles,
+  // `render --tile`).
+  int first_row = 0;
+  int last_row = -1;
   // Fast accuracy only: also compute the reference lighting of every sample, so that the
   // lighting error is |fast − reference| + the reference's estimate (reference accuracy always
   // reports its estimate).
@@ -44,8 +49,9 @@ struct RenderJob {
 // the sea. The layers sun … x0 are empty unless the job asked for them (RenderJob::layers).
 struct RenderedImage {
   int width = 0;
-  int height = 0;
-  std::vector<Vec3> radiance;             // cd/m², linear sRGB
+  int height = 0;              // rows held (the job's band)
+  int first_row = 0;           // the image row of row 0 (0 unless the job rendered a band)
+  std::vector<Vec3> radiance;  // cd/m², linear sRGB
   std::vector<Vec3> sun, sky, sea, foam;  // the terms (AOVs), 0 where the sea is not seen
   std::vector<double> depth;              // mean view depth of the sea samples [m], 0 if none
   std::vector<Vec3> normal;               // mean shading normal of the sea samples, 0 if none
