@@ -503,7 +503,9 @@ sed 's/"resolution": 128/"resolution": 256/' "$tmp/memory.json" >"$tmp/memory256
 estimate=$(sed -n 's/^oceanref: needs an estimated \([0-9.]*\) MiB.*/\1/p' "$tmp/err")
 peak=$(peak_bytes fields "$tmp/memory256.json" --threads 2 -o "$tmp/fields.exr")
 check_estimate fields "$(awk -v m="$estimate" 'BEGIN { print m * 1048576 }')" "$peak"
-expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers \(render.width x render.height\) 104 MiB, sample fragments \(render.width x render.height x render.samples_per_pixel\) 80 MiB, radiance hash input \(render.width x render.height\) 12 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
+expect 2 "^oceanref: needs an estimated 14[0-9](\.[0-9])? MiB of memory \(largest: sample fragments \(render.width x render.height x render.samples_per_pixel\) 80 MiB, pixel buffers \(render.width x render.height\) 28 MiB, radiance hash input \(render.width x render.height\) 12 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
+# The per-pixel layers of --aov (sun, sky, sea, foam, depth, normal, x0) are counted only when asked.
+expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers \(render.width x render.height\) 104 MiB," render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M --aov
 [ -e "$tmp/refused.exr" ] && fail "a render refused for memory wrote its output"
 expect 2 "^oceanref: needs an estimated .* MiB of memory \(largest: wave grids \(waves.resolution, waves.low_resolution, waves.cascades\) .*over the limit of 16 MiB; raise it with --max-memory" fields "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 16M
 expect 2 "^oceanref: CANDIDATE: .*memory.exr: cannot read the EXR file: part 0: 1024 x 512 pixels of 3 channels need 6 MiB, over the 3.8 MiB left of the reading limit \(--max-memory\)" compare "$tmp/memory.exr" "$tmp/memory.exr" --max-memory 16M
@@ -515,6 +517,37 @@ expect 2 "^oceanref: CANDIDATE: .*attribute_claims_2gb.exr: cannot read the EXR 
 expect 2 "^oceanref: --max-memory: must be in \[16M, 1048576G\]" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 8M
 expect 2 "^oceanref: --max-memory: expected a finite number in \[16M, 1048576G\] .*got '20Q'" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 20Q
 expect 2 "^oceanref: --theta-deg: 1001 frequencies x 1001 directions = 1002001 rows, over the limit of 1000000" spectrum --model jonswap --omega "$(seq -s, 1 1001)" --theta-deg "$(seq -s, 1 1001)"
+
+# --- render --tile I/N and merge: the pieces merge into the bytes of one render ---------------
+scene="$source_dir/reference/scenes/golden/default_small.json"
+"$bin" render "$scene" -o "$tmp/whole.exr" --png "$tmp/whole.png" --aov --threads 2 >"$tmp/whole.out"
+# The tiles as separate processes, by GNU parallel (tools/setup.sh installs it; docs/DISTRIBUTED.md).
+checks=$((checks + 1))
+if ! command -v parallel >/dev/null; then
+  fail "GNU parallel is not installed (tools/setup.sh installs it)"
+elif ! parallel --will-cite --halt now,fail=1 -j 2 \
+  "$bin" render "$scene" --aov --threads 1 --tile {}/3 -o "$tmp/tile{}.piece" ::: 0 1 2 >/dev/null; then
+  fail "render --tile I/3 under GNU parallel failed"
+fi
+expect 0 '^pixel_sha256,' merge "$scene" "$tmp/tile2.piece" "$tmp/tile0.piece" "$tmp/tile1.piece" \
+  -o "$tmp/merged.exr" --png "$tmp/merged.png"
+checks=$((checks + 1))
+cmp -s "$tmp/whole.out" "$tmp/out" || fail "merge printed other figures than render: $(diff "$tmp/whole.out" "$tmp/out")"
+for f in exr png; do
+  checks=$((checks + 1))
+  cmp -s "$tmp/whole.$f" "$tmp/merged.$f" || fail "merged $f differs from the single-process render's"
+done
+expect 0 '^tile,1/3$' render "$scene" --tile 1/3 -o "$tmp/t.piece"
+grep -q '^rows,18,36$' "$tmp/out" || fail "render --tile 1/3 of 54 rows did not render rows 18 to 35"
+expect 2 '^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got .3/3.$' render "$scene" --tile 3/3 -o "$tmp/x.piece"
+expect 2 '^oceanref: --tile: expected I/N' render "$scene" --tile 1 -o "$tmp/x.piece"
+expect 2 '^oceanref: --tile: N must be <= the image.s 54 rows, got 55$' render "$scene" --tile 0/55 -o "$tmp/x.piece"
+expect 2 '^oceanref: --png: not with --tile' render "$scene" --tile 0/2 --png "$tmp/x.png" -o "$tmp/x.piece"
+expect 2 '^oceanref: tile 0 of 3 is missing$' merge "$scene" "$tmp/tile1.piece" "$tmp/tile2.piece" -o "$tmp/x.exr"
+expect 2 'tile1.piece: tile 1 again' merge "$scene" "$tmp/tile0.piece" "$tmp/tile1.piece" "$tmp/tile1.piece" "$tmp/tile2.piece" -o "$tmp/x.exr"
+expect 2 'tile0.piece: rendered from another scene' merge "$source_dir/reference/scenes/golden/pm_high_sun.json" "$tmp/tile0.piece" "$tmp/tile1.piece" "$tmp/tile2.piece" -o "$tmp/x.exr"
+expect 2 'default_small.json: not an oceanref render piece' merge "$scene" "$scene" -o "$tmp/x.exr"
+[ -e "$tmp/x.exr" ] && fail "a refused merge wrote its output"
 
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)

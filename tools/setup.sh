@@ -14,7 +14,7 @@ packages=(build-essential cmake ninja-build clang libclang-rt-dev clang-format d
           libglm-dev libopenexr-dev libtinyobjloader-dev doctest-dev
           nlohmann-json3-dev libcli11-dev libfftw3-dev pkg-config zlib1g-dev libmpfr-dev
           chromium openimageio-tools python3-openimageio openexr python3-jsonschema
-          pybind11-dev python3-dev python3-numpy python3-pytest)
+          pybind11-dev python3-dev python3-numpy python3-pytest parallel)
 
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   const auto run_sky = oceanref::cli::add_sky_command(app);
   const auto run_brdf = oceanref::cli::add_brdf_command(app);
   const auto run_render = oceanref::cli::add_render_command(app);
+  const auto run_merge = oceanref::cli::add_merge_command(app);
   const auto run_probe = oceanref::cli::add_probe_command(app);
   const auto run_compare = oceanref::cli::add_compare_command(app);
   const auto run_golden = oceanref::cli::add_golden_command(app);
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
       if (app.got_subcommand("sky")) run_sky(out);
       if (app.got_subcommand("brdf")) run_brdf(out);
       if (app.got_subcommand("render")) run_render(out);
+      if (app.got_subcommand("merge")) run_merge(out);
       if (app.got_subcommand("probe")) run_probe(out);
       if (app.got_subcommand("compare")) run_compare(out);
       if (app.got_subcommand("golden")) run_golden(out);

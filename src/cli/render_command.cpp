@@ -9,6 +9,9 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "cli/text.h"
 #include "conformance/render_output.h"
@@ -33,6 +36,53 @@ void log_progress(const std::string& message) {
   progress("oceanref", message);
 }
 
+// --tile I/N: tile I of N (0 <= I < N), {0, 1} when not given.
+std::pair<int, int> parse_tile(const std::string& text) {
+  if (text.empty()) return {0, 1};
+  const std::size_t slash = text.find('/');
+  const auto integer = [&](const std::string& part, int lo, int hi) {
+    std::size_t used = 0;
+    int v = -1;
+    try {
+      v = std::stoi(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (part.empty() || used != part.size() || v < lo || v > hi || part[0] == '+' ||
+        part[0] == ' ') {
+      throw UsageError("--tile",
+                       "expected I/N with integers 0 <= I < N <= " + std::to_string(kMaxExrSide) +
+                           ", got '" + escape_value(text) + "'");
+    }
+    return v;
+  };
+  if (slash == std::string::npos) integer("", 0, 0);  // throws
+  const int n = integer(text.substr(slash + 1), 1, kMaxExrSide);
+  const int i = integer(text.substr(0, slash), 0, n - 1);
+  return {i, n};
+}
+
+// What render and merge print (the same lines for the same image).
+void print_report(std::ostream& out, const RenderedScene& r, const Scene& scene,
+                  const RenderOutputOptions& options) {
+  out << "pixel_sha256," << r.pixel_sha256 << '\n';
+  out << "radiance_f64_sha256," << r.radiance_f64_sha256 << '\n';
+  const LightingErrorSummary e = summarize_lighting_error(r.image);
+  if (e.estimated) {
+    out << "lighting_error_max_relative," << format_number(e.max_relative) << '\n';
+    out << "lighting_error_median_relative," << format_number(e.median_relative) << '\n';
+  }
+  out << "unconverged_samples," << r.image.unconverged_samples << '\n';
+  out << "integrand_evaluations," << r.image.integrand_evaluations << '\n';
+  out << "memory_estimate_bytes," << format_number(render_memory_estimate(scene, options).total())
+      << '\n';
+  if (r.image.unconverged_samples > 0) {
+    progress("oceanref", "warning: " + std::to_string(r.image.unconverged_samples) +
+                             " samples missed the lighting tolerance (their error estimates "
+                             "are in --aov lighting_error)");
+  }
+}
+
 void progress_bar(double share) {
   const int width = 40;
   const int filled = static_cast<int>(share * width);
@@ -44,7 +94,7 @@ void progress_bar(double share) {
 
 std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   struct Flags {
-    std::string scene, output, png, max_memory;
+    std::string scene, output, png, max_memory, tile;
     int threads = 0;
     int spp = 0;
     bool aov = false;
@@ -68,38 +118,82 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       "the lighting per channel; for shading.accuracy fast, |fast - reference| + the reference's "
       "estimate, which costs a reference render)");
   cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
+  cmd->add_option("--tile", f->tile,
+                  "I/N: render only tile I of N (pixel rows I*H/N to (I+1)*H/N - 1, 0 <= I < N "
+                  "<= H) and write it to --output as a render piece, for `oceanref merge` "
+                  "(docs/DISTRIBUTED.md); not with --png");
   return [f](std::ostream& out) {
     check_output_paths({{"--output", f->output}, {"--png", f->png}}, {f->scene});
     RenderOutputOptions options;
     options.threads = resolve_threads(f->threads);
     options.max_memory = max_memory_flag(f->max_memory);
+    std::tie(options.tile, options.tiles) = parse_tile(f->tile);
+    if (!f->tile.empty() && !f->png.empty()) {
+      throw UsageError("--png", "not with --tile (merge the pieces, then ask merge for --png)");
+    }
     const Scene scene = load_scene(f->scene);
+    if (options.tiles > scene.image.height) {
+      throw UsageError("--tile", "N must be <= the image's " + std::to_string(scene.image.height) +
+                                     " rows, got " + std::to_string(options.tiles));
+    }
     options.samples_per_axis = samples_per_axis(f->spp);
     options.aov = f->aov;
     options.log = log_progress;
     if (isatty(STDERR_FILENO)) options.progress = progress_bar;
+    if (!f->tile.empty()) {
+      const RenderPiece piece = render_scene_piece(scene, options);
+      progress("oceanref", "writing " + f->output);
+      write_render_piece(f->output, piece);
+      out << "tile," << piece.tile << '/' << piece.tiles << '\n';
+      out << "rows," << piece.band.first_row << ',' << piece.band.first_row + piece.band.height
+          << '\n';
+      out << "unconverged_samples," << piece.band.unconverged_samples << '\n';
+      out << "integrand_evaluations," << piece.band.integrand_evaluations << '\n';
+      return;
+    }
     const RenderedScene r = render_scene(scene, options);
-    const ExrImage& exr = r.exr;
-    const std::string& hash = r.pixel_sha256;
     progress("oceanref", "writing " + f->output);
-    write_exr(f->output, exr);
+    write_exr(f->output, r.exr);
     if (!f->png.empty()) write_preview_png(f->png, r.image, r.settings);
-    out << "pixel_sha256," << hash << '\n';
-    out << "radiance_f64_sha256," << r.radiance_f64_sha256 << '\n';
-    const LightingErrorSummary e = summarize_lighting_error(r.image);
-    if (e.estimated) {
-      out << "lighting_error_max_relative," << format_number(e.max_relative) << '\n';
-      out << "lighting_error_median_relative," << format_number(e.median_relative) << '\n';
+    print_report(out, r, scene, options);
+  };
+}
+
+std::function<void(std::ostream&)> add_merge_command(CLI::App& app) {
+  struct Flags {
+    std::string scene, output, png;
+    std::vector<std::string> pieces;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* cmd = app.add_subcommand(
+      "merge",
+      "Merge the render pieces of `oceanref render --tile I/N` (every tile once, each from this "
+      "scene) into the EXR, preview and report one `oceanref render` would write: the same "
+      "bytes.");
+  cmd->add_option("SCENE", f->scene, "scene file (JSON) the pieces were rendered from")->required();
+  cmd->add_option("PIECES", f->pieces, "the N render pieces, in any order")->required();
+  cmd->add_option("-o,--output", f->output, "OUT.exr")->required();
+  cmd->add_option("--png", f->png, "PREVIEW.png: Reinhard 2002 tone mapping, sRGB transfer");
+  return [f](std::ostream& out) {
+    std::vector<std::string> inputs = f->pieces;
+    inputs.push_back(f->scene);
+    check_output_paths({{"--output", f->output}, {"--png", f->png}}, inputs);
+    Scene scene = load_scene(f->scene);
+    std::vector<RenderPiece> pieces;
+    for (const std::string& path : f->pieces) {
+      progress("oceanref", "reading " + path);
+      pieces.push_back(read_render_piece(path));
     }
-    out << "unconverged_samples," << r.image.unconverged_samples << '\n';
-    out << "integrand_evaluations," << r.image.integrand_evaluations << '\n';
-    out << "memory_estimate_bytes," << format_number(render_memory_estimate(scene, options).total())
-        << '\n';
-    if (r.image.unconverged_samples > 0) {
-      progress("oceanref", "warning: " + std::to_string(r.image.unconverged_samples) +
-                               " samples missed the lighting tolerance (their error estimates "
-                               "are in --aov lighting_error)");
-    }
+    RenderOutputOptions options;  // as render had them: the report's memory estimate
+    options.samples_per_axis = pieces.front().samples_per_axis;
+    options.aov = pieces.front().layers;
+    scene.image.samples_per_axis = options.samples_per_axis;
+    const RenderedScene r =
+        scene_output(scene, merge_render_pieces(scene, pieces, f->pieces), options.aov);
+    progress("oceanref", "writing " + f->output);
+    write_exr(f->output, r.exr);
+    if (!f->png.empty()) write_preview_png(f->png, r.image, r.settings);
+    print_report(out, r, scene, options);
   };
 }
 

@@ -1,4 +1,5 @@
-// `oceanref render` (the reference image) and `oceanref probe` (everything behind one pixel).
+// `oceanref render` (the reference image, or one tile of it), `oceanref merge` (the tiles into the
+// image) and `oceanref probe` (everything behind one pixel).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -8,6 +9,7 @@
 namespace oceanref::cli {
 
 std::function<void(std::ostream& out)> add_render_command(CLI::App& app);
+std::function<void(std::ostream& out)> add_merge_command(CLI::App& app);
 std::function<void(std::ostream& out)> add_probe_command(CLI::App& app);
 
 }  // namespace oceanref::cli

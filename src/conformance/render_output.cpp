@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "conformance/provenance.h"
+#include "core/check.h"
 #include "core/format.h"
 #include "io/exr_camera.h"
 #include "io/png.h"
@@ -67,7 +68,10 @@ RenderedScene render_scene(const std::string& path, const RenderOutputOptions& o
 MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOptions& options) {
   const ImageSettings& im = scene.image;
   const int axis = options.samples_per_axis > 0 ? options.samples_per_axis : im.samples_per_axis;
-  const double pixels = static_cast<double>(im.width) * im.height;
+  // A tile holds its own rows (the piece's doubles are counted as the EXR channels and hash
+  // input of a whole render: fewer bytes).
+  const auto [first, last] = tile_rows(options.tile, options.tiles, im.height);
+  const double pixels = static_cast<double>(im.width) * (last - first);
   const double samples = pixels * axis * axis;
   const double vertices = static_cast<double>(scene.grid.columns) * scene.grid.rows;
   // Per vertex: x0, the displaced position, its projection and two triangles of indices.
@@ -90,28 +94,60 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
            {"radiance hash input" + image, pixels * sizeof(Vec3)}}};
 }
 
+namespace {
+// The image of the options' rows of the scene (all of them unless tiles > 1).
+RenderedImage render_rows(PreparedRender& p, const RenderOutputOptions& options) {
+  const auto [first, last] = tile_rows(options.tile, options.tiles, p.scene.image.height);
+  note(options.log,
+       "rendering " + std::to_string(p.scene.image.width) + "x" +
+           std::to_string(p.scene.image.height) + " at " +
+           std::to_string(p.job.samples_per_axis * p.job.samples_per_axis) + " spp" +
+           (options.tiles > 1 ? ", tile " + std::to_string(options.tile) + " of " +
+                                    std::to_string(options.tiles) + " (rows " +
+                                    std::to_string(first) + " to " + std::to_string(last - 1) + ")"
+                              : std::string()));
+  if (options.progress) p.job.progress = options.progress;
+  // The error layer of a fast render is its difference from the reference (computed as well).
+  p.job.estimate_fast_error = options.aov;
+  p.job.layers = options.aov;
+  p.job.first_row = first;
+  p.job.last_row = last;
+  return render(p.job, p.unresolved);
+}
+}  // namespace
+
 RenderedScene render_scene(const Scene& scene, const RenderOutputOptions& options) {
+  OCEANREF_EXPECTS(options.tiles == 1, "render_scene renders the whole image (one tile)");
   require_within(render_memory_estimate(scene, options), options.max_memory,
                  "--max-memory (Python: max_memory=)");
   const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
-  note(options.log, "rendering " + std::to_string(p->scene.image.width) + "x" +
-                        std::to_string(p->scene.image.height) + " at " +
-                        std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) + " spp");
-  if (options.progress) p->job.progress = options.progress;
+  return scene_output(p->scene, render_rows(*p, options), options.aov);
+}
+
+RenderPiece render_scene_piece(const Scene& scene, const RenderOutputOptions& options) {
+  require_within(render_memory_estimate(scene, options), options.max_memory,
+                 "--max-memory (Python: max_memory=)");
+  const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
+  return {sha256_hex(p->scene.canonical), options.tile, options.tiles,
+          p->job.samples_per_axis,        options.aov,  render_rows(*p, options)};
+}
+
+RenderedScene scene_output(const Scene& scene, RenderedImage rendered, bool aov) {
+  OCEANREF_EXPECTS(rendered.first_row == 0 && rendered.height == scene.image.height &&
+                       rendered.width == scene.image.width,
+                   "the whole image of the scene");
   RenderedScene r;
-  r.settings = p->scene.image;
-  // The error layer of a fast render is its difference from the reference (computed as well).
-  p->job.estimate_fast_error = options.aov;
-  p->job.layers = options.aov;
-  r.image = render(p->job, p->unresolved);
+  r.settings = scene.image;
+  r.image = std::move(rendered);
   const RenderedImage& image = r.image;
+  const Camera camera = scene_camera(scene);
   ExrImage& exr = r.exr;
   exr.width = image.width;
   exr.height = image.height;
   exr.channels = channels_of("", image.radiance);
   r.pixel_sha256 = pixel_sha256(exr.channels);
   r.radiance_f64_sha256 = radiance_f64_sha256(image.radiance);
-  if (options.aov) {
+  if (aov) {
     for (const auto& [name, layer] :
          {std::pair{"sun.", &image.sun}, std::pair{"sky.", &image.sky},
           std::pair{"sea.", &image.sea}, std::pair{"foam.", &image.foam},
@@ -126,7 +162,7 @@ RenderedScene render_scene(const Scene& scene, const RenderOutputOptions& option
       exr.channels.push_back(std::move(c));
     }
   }
-  const ShadingSettings& shading = p->scene.shading;
+  const ShadingSettings& shading = scene.shading;
   const bool reference = shading.accuracy == LightingAccuracy::reference;
   exr.attributes["oceanref.lighting_accuracy"] =
       reference ? "reference, relative tolerance " + format_number(shading.tolerance)
@@ -136,10 +172,10 @@ RenderedScene render_scene(const Scene& scene, const RenderOutputOptions& option
   exr.attributes["oceanref.version"] = oceanref_version();
   exr.attributes["oceanref.commit"] = oceanref_commit();
   // The view, as the standard attributes (io/exr_camera.h; docs/FILES.md).
-  exr.matrices["worldToCamera"] = world_to_camera_matrix(p->job.camera);
-  exr.matrices["worldToNDC"] = world_to_ndc_matrix(p->job.camera);
-  exr.attributes["oceanref.scene_sha256"] = sha256_hex(p->scene.canonical);
-  exr.attributes["oceanref.seed"] = std::to_string(p->scene.seed);
+  exr.matrices["worldToCamera"] = world_to_camera_matrix(camera);
+  exr.matrices["worldToNDC"] = world_to_ndc_matrix(camera);
+  exr.attributes["oceanref.scene_sha256"] = sha256_hex(scene.canonical);
+  exr.attributes["oceanref.seed"] = std::to_string(scene.seed);
   exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
   exr.attributes["oceanref.pixel_sha256"] = r.pixel_sha256;
   exr.attributes["oceanref.radiance_f64_sha256"] = r.radiance_f64_sha256;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "conformance/render_piece.h"
 #include "io/exr.h"
 #include "raster/renderer.h"
 #include "scene/scene.h"
@@ -46,6 +47,9 @@ struct RenderOutputOptions {
   std::function<void(double)> progress;         // share of the image done (may be empty)
   // render_scene refuses (MemoryLimitError) a render whose estimate is over this many bytes.
   double max_memory = kDefaultMaxMemory;
+  // render_scene_piece: tile `tile` of `tiles` (render_piece.h); render_scene: the whole image.
+  int tile = 0;
+  int tiles = 1;
 };
 
 // Every large buffer render_scene allocates for `scene` with `options` (bytes): the wave grids,
@@ -63,6 +67,12 @@ struct RenderedScene {
 };
 RenderedScene render_scene(const Scene& scene, const RenderOutputOptions& options);
 RenderedScene render_scene(const std::string& path, const RenderOutputOptions& options);
+// The EXR (attributes included) and the hashes of a whole rendered image of `scene` (whose
+// samples per axis are those rendered); with `aov` the image holds the layers, written too.
+// render_scene's output, and merge's (the same bytes from the same image).
+RenderedScene scene_output(const Scene& scene, RenderedImage image, bool aov);
+// Tile options.tile of options.tiles of the scene, as a piece for `oceanref merge`.
+RenderPiece render_scene_piece(const Scene& scene, const RenderOutputOptions& options);
 
 // The estimated lighting error relative to the radiance, over the channels of the pixels that
 // see the sea (`estimated` false when the image carries no estimate).
