@@ -76,7 +76,9 @@ def run_once(argv, work_dir):
         proc.returncode = os.waitstatus_to_exitcode(status)
     if proc.returncode != 0:
         sys.stderr.write(err_path.read_text(errors="replace")[-4000:])
-        raise SystemExit(f"bench: `{' '.join(map(str, argv))}` exited {proc.returncode}")
+        how = (f"was killed by signal {-proc.returncode}" if proc.returncode < 0
+               else f"exited {proc.returncode}")
+        raise SystemExit(f"bench: `{' '.join(map(str, argv))}` {how}")
     return {
         "wall_s": wall,
         "cpu_s": usage.ru_utime + usage.ru_stime,
@@ -101,7 +103,9 @@ def run_case(case, runs):
             work = Path(v["work_dir"])
             for f in v.get("outputs", []):
                 (work / f).unlink(missing_ok=True)
+            load = os.getloadavg()[0]
             record, stdout = run_once(v["argv"], work)
+            record["load_average_1min_before"] = load
             if v.get("parse"):
                 record.update(v["parse"](stdout))
             if i == 0:
@@ -113,8 +117,9 @@ def run_case(case, runs):
             extra = ""
             if "frame_ms" in record:
                 extra = f", frame {fmt_ms(record['frame_ms'])}"
-            log(f"{case['title']}: {name} run {i + 1}/{runs}: {fmt_s(record['wall_s'])}{extra}, "
-                f"peak {mib(record['max_rss_bytes']):.0f} MiB (case ETA {fmt_duration(eta)})")
+            log(f"{case['short']}: {name} run {i + 1}/{runs}: {fmt_s(record['wall_s'])}{extra}, "
+                f"CPU {fmt_s(record['cpu_s'])}, peak {mib(record['max_rss_bytes']):.0f} MiB, load {load:.1f} "
+                f"(case ETA {fmt_duration(eta)})")
     for v in variants.values():
         v["wall_s"] = summary([r["wall_s"] for r in v["runs"]])
         v["cpu_s"] = summary([r["cpu_s"] for r in v["runs"]])
@@ -292,10 +297,20 @@ def markdown(result):
                  f"{flags(base)}); current = {cur['describe']} "
                  f"({cur['build'].get('build_type')}, {flags(cur)}). "
                  f"Wall time of the whole process, median [min – max] of {result['settings']['runs']} runs, "
-                 f"the commands of each row alternating run by run; ratio = current/baseline of the medians.")
+                 f"the commands of each row alternating run by run; ratio = current/baseline of the medians "
+                 f"(CPU time: user + system of the process, all its threads).")
+    busiest = max([load["start"][0], load["end"][0]] +
+                  [r.get("load_average_1min_before", 0) for case in result["cases"]
+                   for v in case["variants"].values() for r in v["runs"]])
+    if busiest > 0.5 * m["cores"]:
+        lines.append("")
+        lines.append(f"**The machine was busy** (1-minute load average up to {busiest:.1f} on "
+                     f"{m['cores']} cores, other work beside the bench): wall times, their ratios and the "
+                     f"thread scaling are spoilt by it; the CPU-time ratios less so. Quote a run on an "
+                     f"idle machine.")
     lines.append("")
-    lines.append("| case | baseline | current | current/baseline | goal |")
-    lines.append("|---|---|---|---|---|")
+    lines.append("| case | baseline | current | current/baseline | CPU time current/baseline | goal |")
+    lines.append("|---|---|---|---|---|---|")
     for case in result["cases"]:
         if case["kind"] != "versus":
             continue
@@ -304,8 +319,10 @@ def markdown(result):
             bs, cs = spread(b["frame_ms"], fmt_ms), spread(c["frame_ms"], fmt_ms)
         else:
             bs, cs = spread(b["wall_s"]), spread(c["wall_s"])
+        # The in-process frame timer has no CPU time of its own (the process does more).
+        cpu = "—" if "frame_ms" in c else f"{c['cpu_s']['median'] / b['cpu_s']['median']:.3f}"
         lines.append(f"| {case['title']} | {bs} | {cs} | {ratio_text(case['ratio'])} | "
-                     f"{case.get('goal_text', '—')} |")
+                     f"{cpu} | {case.get('goal_text', '—')} |")
     ref = next((c for c in result["cases"] if c["kind"] == "reference"), None)
     if ref:
         lines.append("")
