@@ -426,8 +426,7 @@ def svg(result):
             gy = ypos(goal)
             parts.append(f'<line x1="{cx - w * 0.8:.1f}" x2="{cx + w * 0.8:.1f}" y1="{gy:.1f}" '
                          f'y2="{gy:.1f}" stroke="#2a9d3a" stroke-width="2" stroke-dasharray="5,3"/>')
-        parts.append(f'<text x="{cx:.1f}" y="{ypos(r) - 5 if r > 1 else ypos(r) + 14:.1f}" '
-                     f'text-anchor="middle">{r:.2f}</text>')
+        parts.append(f'<text x="{cx + w / 2 + 3:.1f}" y="{ypos(r) + 4:.1f}">{r:.2f}</text>')
         parts.append(f'<text x="{cx:.1f}" y="{y1 + 16}" text-anchor="middle" font-size="11">'
                      f'{svg_escape(label)}<tspan x="{cx:.1f}" dy="13" font-size="9" fill="#555">'
                      f'{svg_escape(sublabel)}</tspan></text>')
@@ -461,6 +460,8 @@ def svg(result):
         if tmax >= 2 and scaling.get("goal"):
             parts.append(f'<circle cx="{sx(2):.1f}" cy="{sy(scaling["goal"]):.1f}" r="6" fill="none" '
                          f'stroke="#2a9d3a" stroke-width="2"/>')
+            parts.append(f'<text x="{sx(2) - 10:.1f}" y="{sy(scaling["goal"]) + 4:.1f}" text-anchor="end" '
+                         f'fill="#2a9d3a">goal {scaling["goal"]}×</text>')
         path = " ".join(f"{'M' if i == 0 else 'L'}{sx(t):.1f},{sy(s):.1f}" for i, (t, s) in enumerate(points))
         parts.append(f'<path d="{path}" fill="none" stroke="#4a7ab5" stroke-width="2"/>')
         for t, s in points:
