@@ -145,6 +145,13 @@ TEST_CASE("preconditions of the shading and raster stages fire on wrong calls") 
                   PreconditionError);
   CHECK_THROWS_AS(rasterize(vertices, {{0, 1, 2}}, samples, 5, 10, 0.1, band, 6),
                   PreconditionError);
+  // A subset of the triangles: ascending indices of existing triangles.
+  const std::vector<std::array<std::uint32_t, 3>> two{{0, 1, 2}, {0, 2, 1}};
+  CHECK_NOTHROW(rasterize(vertices, two, {0, 1}, samples, 0, 10, 0.1, fragments));
+  CHECK_THROWS_AS(rasterize(vertices, two, {1, 0}, samples, 0, 10, 0.1, fragments),
+                  PreconditionError);
+  CHECK_THROWS_AS(rasterize(vertices, two, {0, 2}, samples, 0, 10, 0.1, fragments),
+                  PreconditionError);
   // Projected grid settings.
   const Camera camera = make_camera({0, 5, 0}, {0, 0, 50}, {0, 1, 0}, 1.0, 32, 18);
   ProjectedGridSettings settings;

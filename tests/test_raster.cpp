@@ -85,9 +85,21 @@ TEST_CASE("rasterizer: row bands give the fragments of one full pass, whatever t
       rasterize(v, triangles, grid, first, last, 1e-9, banded);
       std::vector<Fragment> alone(static_cast<std::size_t>(last - first) * columns);
       rasterize(v, triangles, grid, first, last, 1e-9, alone, first);
+      // Only the triangles whose sample rows reach the band (as the renderer bins them).
+      std::vector<std::uint32_t> reach;
+      for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+        const auto& i = triangles[t];
+        const auto [lo, hi] = sample_rows_of(v[i[0]], v[i[1]], v[i[2]], grid, 1e-9);
+        if (lo < last && hi > first) reach.push_back(t);
+      }
+      if (band == 1) CHECK(reach.size() < triangles.size());  // a row misses some triangles
+      std::vector<Fragment> binned(alone.size());
+      rasterize(v, triangles, reach, grid, first, last, 1e-9, binned, first);
       for (std::size_t i = 0; i < alone.size(); ++i) {
         const Fragment& w = whole[static_cast<std::size_t>(first) * columns + i];
         CHECK(alone[i].triangle == w.triangle);
+        CHECK(binned[i].triangle == w.triangle);
+        CHECK(binned[i].weights == w.weights);
         CHECK(alone[i].depth == w.depth);
         CHECK(alone[i].weights == w.weights);
       }

@@ -34,10 +34,14 @@ bool owns_boundary(Point a, Point b) {
 }
 }  // namespace
 
-void rasterize(const std::vector<ScreenVertex>& vertices,
-               const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
-               int first_row, int last_row, double near, std::vector<Fragment>& fragments,
-               int fragment_row) {
+namespace {
+// The rasterizer over the triangles triangles[index(i)], i < count, in that order.
+template <class Index>
+void rasterize_indexed(const std::vector<ScreenVertex>& vertices,
+                       const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                       std::size_t count, const Index& index, const SampleGrid& grid, int first_row,
+                       int last_row, double near, std::vector<Fragment>& fragments,
+                       int fragment_row) {
   const int columns = grid.columns();
   const std::size_t width = static_cast<std::size_t>(columns);
   OCEANREF_EXPECTS(grid.samples_per_axis >= 1 && columns >= 1 && fragments.size() % width == 0,
@@ -50,7 +54,10 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
                        ") inside the fragments' rows [" + std::to_string(fragment_row) + ", " +
                        std::to_string(fragment_end) + ") inside [0, " +
                        std::to_string(grid.rows()) + ")");
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t t = index(i);
+    OCEANREF_EXPECTS(t < triangles.size(), "triangle index " + std::to_string(t) + " of " +
+                                               std::to_string(triangles.size()));
     OCEANREF_EXPECTS(triangles[t][0] < vertices.size() && triangles[t][1] < vertices.size() &&
                          triangles[t][2] < vertices.size(),
                      "triangle " + std::to_string(t) + " indexes a vertex beyond the " +
@@ -58,12 +65,10 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
     const ScreenVertex& v0 = vertices[triangles[t][0]];
     const ScreenVertex& v1 = vertices[triangles[t][1]];
     const ScreenVertex& v2 = vertices[triangles[t][2]];
-    if (!(v0.z > near && v1.z > near && v2.z > near)) continue;
     // Sample rows the triangle can touch, within [first_row, last_row) (clamped as doubles, so
     // that a vertex far off screen never overflows an int; a NaN fails the test).
     const int s = grid.samples_per_axis;
-    const double lowest = std::ceil(std::min({v0.y, v1.y, v2.y}) * s - 0.5);
-    const double highest = std::floor(std::max({v0.y, v1.y, v2.y}) * s - 0.5) + 1.0;
+    const auto [lowest, highest] = sample_rows_of(v0, v1, v2, grid, near);
     if (!(lowest < last_row && highest > first_row)) continue;
     const int row_begin = std::max(static_cast<int>(std::fmax(lowest, first_row)), first_row);
     const int row_end = std::min(static_cast<int>(std::fmin(highest, last_row)), last_row);
@@ -130,6 +135,40 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
       }
     }
   }
+}
+
+}  // namespace
+
+void rasterize(const std::vector<ScreenVertex>& vertices,
+               const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
+               int first_row, int last_row, double near, std::vector<Fragment>& fragments,
+               int fragment_row) {
+  rasterize_indexed(
+      vertices, triangles, triangles.size(), [](std::size_t i) { return i; }, grid, first_row,
+      last_row, near, fragments, fragment_row);
+}
+
+void rasterize(const std::vector<ScreenVertex>& vertices,
+               const std::vector<std::array<std::uint32_t, 3>>& triangles,
+               const std::vector<std::uint32_t>& subset, const SampleGrid& grid, int first_row,
+               int last_row, double near, std::vector<Fragment>& fragments, int fragment_row) {
+  for (std::size_t i = 1; i < subset.size(); ++i) {
+    OCEANREF_EXPECTS(subset[i - 1] < subset[i], "triangle indices in ascending order");
+  }
+  rasterize_indexed(
+      vertices, triangles, subset.size(), [&](std::size_t i) { return subset[i]; }, grid, first_row,
+      last_row, near, fragments, fragment_row);
+}
+
+std::pair<double, double> sample_rows_of(const ScreenVertex& a, const ScreenVertex& b,
+                                         const ScreenVertex& c, const SampleGrid& grid,
+                                         double near) {
+  if (!(a.z > near && b.z > near && c.z > near)) return {0.0, 0.0};
+  const int s = grid.samples_per_axis;
+  const double lowest = std::ceil(std::min({a.y, b.y, c.y}) * s - 0.5);
+  const double highest = std::floor(std::max({a.y, b.y, c.y}) * s - 0.5) + 1.0;
+  if (!(highest > lowest)) return {0.0, 0.0};  // NaN too
+  return {lowest, highest};
 }
 
 }  // namespace oceanref

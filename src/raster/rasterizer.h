@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -51,5 +52,17 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
                int first_row, int last_row, double near, std::vector<Fragment>& fragments,
                int fragment_row = 0);
+// The same for the triangles triangles[i], i in `subset` (ascending: the order of a full pass,
+// so that depth ties resolve the same way), e.g. those that reach a band (sample_rows_of).
+void rasterize(const std::vector<ScreenVertex>& vertices,
+               const std::vector<std::array<std::uint32_t, 3>>& triangles,
+               const std::vector<std::uint32_t>& subset, const SampleGrid& grid, int first_row,
+               int last_row, double near, std::vector<Fragment>& fragments, int fragment_row = 0);
+
+// The sample rows [first, last) a triangle can cover (first ≥ last when none: behind the near
+// plane, or not finite); rasterize writes no sample outside them.
+std::pair<double, double> sample_rows_of(const ScreenVertex& a, const ScreenVertex& b,
+                                         const ScreenVertex& c, const SampleGrid& grid,
+                                         double near);
 
 }  // namespace oceanref

@@ -144,13 +144,34 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
       "the sample fragments (one per sample of the image)");
   if (!g.grid.visible || rows == 0) return fragments;
   // Bands of sample rows handed out one at a time (parallel_for): the sea's triangles crowd
-  // near the horizon, so equal shares per thread would not be equal work. Each band walks every
-  // triangle, so bands are not too thin either: about 8 per thread.
+  // near the horizon, so equal shares per thread would not be equal work; about 8 per thread.
+  // Each band rasterizes the triangles that reach it, in triangle order (binned first).
   const int bands = std::min(rows, 8 * std::max(1, job.threads));
+  std::vector<int> starts(static_cast<std::size_t>(bands) + 1);
+  for (int b = 0; b <= bands; ++b) {
+    starts[static_cast<std::size_t>(b)] =
+        first_row + static_cast<int>(static_cast<long>(rows) * b / bands);
+  }
+  std::vector<std::vector<std::uint32_t>> binned(static_cast<std::size_t>(bands));
+  for (std::size_t t = 0; t < g.triangles.size(); ++t) {
+    const auto& v = g.triangles[t];
+    const auto [lo, hi] =
+        sample_rows_of(g.screen[v[0]], g.screen[v[1]], g.screen[v[2]], grid, job.grid.near);
+    if (!(lo < last_row && hi > first_row)) continue;
+    // The bands from the one holding row max(lo, first_row) to the one holding hi − 1.
+    const auto band_of = [&](double row) {
+      return static_cast<std::size_t>(
+          std::upper_bound(starts.begin(), starts.end() - 1, static_cast<int>(row)) -
+          starts.begin() - 1);
+    };
+    const std::size_t b0 = band_of(std::fmax(lo, first_row));
+    const std::size_t b1 = band_of(std::fmin(hi, last_row) - 1.0);
+    for (std::size_t b = b0; b <= b1; ++b) binned[b].push_back(static_cast<std::uint32_t>(t));
+  }
   parallel_for(bands, job.threads, [&](int band) {
-    const int first = first_row + static_cast<int>(static_cast<long>(rows) * band / bands);
-    const int last = first_row + static_cast<int>(static_cast<long>(rows) * (band + 1) / bands);
-    rasterize(g.screen, g.triangles, grid, first, last, job.grid.near, fragments, first_row);
+    const auto b = static_cast<std::size_t>(band);
+    rasterize(g.screen, g.triangles, binned[b], grid, starts[b], starts[b + 1], job.grid.near,
+              fragments, first_row);
   });
   return fragments;
 }
