@@ -3,10 +3,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <ostream>
 #include <string>
 #include <tuple>
@@ -83,12 +85,37 @@ void print_report(std::ostream& out, const RenderedScene& r, const Scene& scene,
   }
 }
 
-void progress_bar(double share) {
-  const int width = 40;
-  const int filled = static_cast<int>(share * width);
-  std::cerr << "\r  [" << std::string(static_cast<std::size_t>(filled), '#')
-            << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
-            << static_cast<int>(share * 100.0) << "%" << (share >= 1.0 ? "\n" : "") << std::flush;
+// A progress bar on stderr with the time left, extrapolated from the share done so far (rows of
+// sea cost more than rows of sky, so the estimate settles once the horizon is passed). Called
+// from worker threads: the bar is drawn under a lock.
+std::function<void(double)> progress_bar() {
+  struct State {
+    std::mutex mutex;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    double shown = 0.0;  // rows finish out of order: the bar never goes back
+  };
+  auto state = std::make_shared<State>();
+  return [state](double share) {
+    const std::lock_guard lock(state->mutex);
+    if (share < state->shown) return;
+    state->shown = share;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - state->start).count();
+    const int width = 40;
+    const int filled = static_cast<int>(share * width);
+    std::string eta;
+    if (share > 0.0 && share < 1.0) {
+      const long left = std::lround(elapsed * (1.0 - share) / share);
+      eta = "  ETA " + (left >= 60 ? std::to_string(left / 60) + " min " : std::string()) +
+            std::to_string(left % 60) + " s ";
+    } else if (share >= 1.0) {
+      eta = "  " + std::to_string(std::lround(elapsed)) + " s";
+    }
+    std::cerr << "\r  [" << std::string(static_cast<std::size_t>(filled), '#')
+              << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
+              << static_cast<int>(share * 100.0) << "%" << eta << (share >= 1.0 ? "\n" : "")
+              << std::flush;
+  };
 }
 }  // namespace
 
@@ -139,7 +166,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     options.samples_per_axis = samples_per_axis(f->spp);
     options.aov = f->aov;
     options.log = log_progress;
-    if (isatty(STDERR_FILENO)) options.progress = progress_bar;
+    if (isatty(STDERR_FILENO)) options.progress = progress_bar();
     if (!f->tile.empty()) {
       const RenderPiece piece = render_scene_piece(scene, options);
       progress("oceanref", "writing " + f->output);

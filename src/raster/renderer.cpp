@@ -190,7 +190,7 @@ std::pair<int, int> job_rows(const RenderJob& job) {
 SlopeVarianceBudget slope_budget(const RenderJob& job, const WaveSettings& waves) {
   const ReferenceFpEnvironment fp;
   return slope_variance_budget(*job.ocean, waves.minimum_wavelength, job.time,
-                               job.shading.interpolation, job.shading.normals);
+                               job.shading.interpolation, job.shading.normals, job.threads);
 }
 
 SlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings& waves) {

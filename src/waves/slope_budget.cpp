@@ -6,6 +6,7 @@
 #include "core/check.h"
 #include "core/fp_environment.h"
 #include "core/math.h"
+#include "core/parallel.h"
 #include "waves/ocean.h"
 
 namespace oceanref {
@@ -66,32 +67,52 @@ double slope_floor_wavenumber(double minimum_wavelength) {
 }
 
 SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wavelength,
-                                          double time, Interpolation mode, ShadingNormals normals) {
+                                          double time, Interpolation mode, ShadingNormals normals,
+                                          int threads) {
   SlopeVarianceBudget b;
   b.floor_wavenumber = slope_floor_wavenumber(minimum_wavelength);
   const double phi = ocean.spectrum.wind_direction;
+  const auto pattern_of = [&](const CascadeSpectra& c) -> const PatternSpectrum& {
+    return normals == ShadingNormals::surface ? c.low : c.high;
+  };
   for (const CascadeSpectra& c : ocean.cascades) {
-    const PatternSpectrum& p = normals == ShadingNormals::surface ? c.low : c.high;
+    const PatternSpectrum& p = pattern_of(c);
     b.cutoff_wavenumber = std::fmax(
         b.cutoff_wavenumber,
         std::fmin(p.pattern.band.upper, nyquist_wavenumber(p.pattern.size, p.pattern.resolution)));
+  }
+  b.cutoff_wavenumber = std::fmin(b.cutoff_wavenumber, b.floor_wavenumber);
+  // Independent tasks, each into its own slot, summed below in cascade order: per cascade the
+  // resolved and discrete variances; then the spectrum's moment and the part above the cut-off.
+  const std::size_t cascades = ocean.cascades.size();
+  std::vector<SlopeVariance> resolved(cascades), discrete(cascades);
+  parallel_for(static_cast<int>(cascades) + 2, threads, [&](int task) {
+    const auto i = static_cast<std::size_t>(task);
+    if (i == cascades) {
+      b.moment = band_slope_variance(ocean.spectrum, 0.0, b.floor_wavenumber);
+      return;
+    }
+    if (i == cascades + 1) {
+      b.above_cutoff = band_slope_variance(ocean.spectrum, b.cutoff_wavenumber, b.floor_wavenumber);
+      return;
+    }
+    const PatternSpectrum& p = pattern_of(ocean.cascades[i]);
     const std::vector<Complex> h = spectrum_at_time(p, time);
     // Direct summation differentiates the summed height in either mode; the grids are read as
     // the interpolated height (surface) or the interpolated spectral slopes (high resolution).
     const SlopeReading reading = normals == ShadingNormals::surface || mode == Interpolation::direct
                                      ? SlopeReading::derivative_of_height
                                      : SlopeReading::interpolated_slopes;
-    const SlopeVariance r = resolved_slope_variance(p, h, phi, mode, reading);
-    const SlopeVariance d = resolved_slope_variance(p, h, phi, Interpolation::direct,
-                                                    SlopeReading::derivative_of_height);
-    b.resolved.upwind += r.upwind;
-    b.resolved.crosswind += r.crosswind;
-    b.discrete.upwind += d.upwind;
-    b.discrete.crosswind += d.crosswind;
+    resolved[i] = resolved_slope_variance(p, h, phi, mode, reading);
+    discrete[i] = resolved_slope_variance(p, h, phi, Interpolation::direct,
+                                          SlopeReading::derivative_of_height);
+  });
+  for (std::size_t i = 0; i < cascades; ++i) {
+    b.resolved.upwind += resolved[i].upwind;
+    b.resolved.crosswind += resolved[i].crosswind;
+    b.discrete.upwind += discrete[i].upwind;
+    b.discrete.crosswind += discrete[i].crosswind;
   }
-  b.cutoff_wavenumber = std::fmin(b.cutoff_wavenumber, b.floor_wavenumber);
-  b.moment = band_slope_variance(ocean.spectrum, 0.0, b.floor_wavenumber);
-  b.above_cutoff = band_slope_variance(ocean.spectrum, b.cutoff_wavenumber, b.floor_wavenumber);
   const auto difference = [](const SlopeVariance& x, const SlopeVariance& y) {
     return SlopeVariance{x.upwind - y.upwind, x.crosswind - y.crosswind};
   };

@@ -68,8 +68,10 @@ struct SlopeVarianceBudget {
 double slope_floor_wavenumber(double minimum_wavelength);
 
 // The budget of a frame at time t with the renderer's interpolation and normals: the N_l
-// patterns for `surface`, the N_h patterns for `high_resolution`.
+// patterns for `surface`, the N_h patterns for `high_resolution`. The cascades and the two
+// moment integrals run on up to `threads` threads (the same bits for any count).
 SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wavelength,
-                                          double time, Interpolation mode, ShadingNormals normals);
+                                          double time, Interpolation mode, ShadingNormals normals,
+                                          int threads = 1);
 
 }  // namespace oceanref
