@@ -7,14 +7,14 @@
 #   build-fuzz/tests/fuzz/oceanref_fuzz_<target> FILE
 # and, once fixed, add it to tests/fuzz/regressions/<target>/ (tests/fuzz/README.md).
 #
-#   tools/fuzz.sh [SECONDS] [TARGET...]     (targets: scene cli exr; default all three)
+#   tools/fuzz.sh [SECONDS] [TARGET...]     (targets: scene cli exr piece; default all four)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 seconds=${1:-30}
 shift $(($# > 0 ? 1 : 0))
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene cli exr)
+[ ${#targets[@]} -gt 0 ] || targets=(scene cli exr piece)
 case $seconds in '' | *[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2 ;; esac
 
 kiss=${OCEANREF_KISSFFT_DIR:-$PWD/build/_deps/kissfft-src}

@@ -18,6 +18,7 @@
 #include "cli/sky_command.h"
 #include "cli/spectrum_command.h"
 #include "conformance/compare.h"
+#include "conformance/render_piece.h"
 #include "io/exr.h"
 #include "scene/scene.h"
 
@@ -135,10 +136,17 @@ void exr_entry(const std::uint8_t* data, std::size_t size) {
   guarded("exr", [&] { (void)read_exr(file.path, kMaxFuzzPixelBytes); });
 }
 
+void piece_entry(const std::uint8_t* data, std::size_t size) {
+  const RemoveOnExit file{temporary_path(".piece")};
+  write_file(file.path, data, size);
+  guarded("piece", [&] { (void)read_render_piece(file.path); });
+}
+
 Entry entry_for(std::string_view target) {
   if (target == "scene") return scene_entry;
   if (target == "cli") return cli_entry;
   if (target == "exr") return exr_entry;
+  if (target == "piece") return piece_entry;
   return nullptr;
 }
 

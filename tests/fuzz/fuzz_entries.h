@@ -27,9 +27,13 @@ void cli_entry(const std::uint8_t* data, std::size_t size);
 // `compare --max-memory`), and each input stays fast.
 void exr_entry(const std::uint8_t* data, std::size_t size);
 
+// A render piece as `oceanref merge` reads it (read_render_piece on the bytes written to a
+// temporary file).
+void piece_entry(const std::uint8_t* data, std::size_t size);
+
 inline constexpr double kMaxFuzzPixelBytes = 16.0 * 1024 * 1024;
 
-// The entry of a target by name ("scene", "cli", "exr"); nullptr for another name.
+// The entry of a target by name ("scene", "cli", "exr", "piece"); nullptr for another name.
 using Entry = void (*)(const std::uint8_t*, std::size_t);
 Entry entry_for(std::string_view target);
 
