@@ -199,8 +199,10 @@ TEST_CASE("a band of rows renders the same bits as those rows of the whole image
   const int h = whole.height;
   REQUIRE(h >= 8);
   int covered = 0;
-  for (const auto& [first, last] : {std::pair{0, 1}, std::pair{1, 4}, std::pair{4, h - 1},
-                                    std::pair{h - 1, h}, std::pair{2, h}}) {
+  for (const std::pair<int, int>& range : {std::pair{0, 1}, std::pair{1, 4}, std::pair{4, h - 1},
+                                           std::pair{h - 1, h}, std::pair{2, h}}) {
+    const int first = range.first;  // (clang 14 cannot capture a structured binding)
+    const int last = range.second;
     CAPTURE(first);
     CAPTURE(last);
     s->job.first_row = first;

@@ -38,7 +38,7 @@ echo "# $(date -u +%Y-%m-%d), $(lscpu | sed -n 's/^Model name: *//p' | head -1),
   "commit $("$bin" --version | sed -n 's/.*(commit \(.*\))$/\1/p')"
 valgrind --tool=callgrind --callgrind-out-file="$tmp/cg" "$bin" render "$tmp/fast.json" \
   -o "$tmp/fast.exr" --threads 1 >/dev/null 2>"$tmp/valgrind.log"
-callgrind_annotate --inclusive=yes "$tmp/cg" >"$tmp/inclusive.txt" 2>/dev/null
+callgrind_annotate --inclusive=yes --threshold=100 "$tmp/cg" >"$tmp/inclusive.txt" 2>/dev/null
 total=$(sed -n 's/^ *\([0-9,]*\) .*PROGRAM TOTALS.*/\1/p' "$tmp/inclusive.txt" | tr -d ,)
 echo
 echo "fast lighting (sky_order 4, sun_order 2): $total instructions in all"
@@ -97,8 +97,9 @@ image = oiio.ImageInput.open(tmp + "/reference.exr")
 c = image.spec().channelnames.index("coverage")
 samples = 4 * float(image.read_image(0, 0, c, c + 1, "float").sum())
 per_sample = int(report["integrand_evaluations"]) / samples
-print(f"| {tolerance} | {per_sample:.0f} | {float(report[\"lighting_error_median_relative\"]):.2g} "
-      f"| {float(report[\"lighting_error_max_relative\"]):.2g} |")
+median = float(report["lighting_error_median_relative"])
+largest = float(report["lighting_error_max_relative"])
+print(f"| {tolerance} | {per_sample:.0f} | {median:.2g} | {largest:.2g} |")
 ' "$tmp" "$t"
 done
 echo

@@ -207,7 +207,9 @@ RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, Rend
     if (times != nullptr) times->*stage += std::chrono::duration<double>(now - clock).count();
     clock = now;
   };
-  const auto [first_row, last_row] = job_rows(job);
+  const std::pair<int, int> rows = job_rows(job);  // (not a structured binding: clang 14
+  const int first_row = rows.first;                // cannot capture one in a lambda)
+  const int last_row = rows.second;
   const FrameFields fields = frame_fields(job);
   lap(&RenderTimes::synthesis);
   RenderedImage image;
