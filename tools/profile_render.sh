@@ -70,7 +70,6 @@ row "  reflected sun (sun disk)" 'oceanref::reflected_sun\('
 row "  Smith masking Lambda (erfc, exp)" 'oceanref::smith_lambda\('
 row "exp (every caller)" 'oceanref::math::exp\(double\)'
 row "erfc (every caller)" 'oceanref::math::erfc\(double\)'
-row "EXR writing" 'oceanref::write_exr_parts\('
 
 echo
 # The reference lighting at two tolerances: its cost does not follow the tolerance.
