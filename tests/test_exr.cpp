@@ -24,23 +24,14 @@
 #include "io/exr.h"
 #include "io/exr_camera.h"
 
+#include "temp_dir.h"
+
 using namespace oceanref;
 
 namespace {
-// A fresh folder for one test's files, removed afterwards.
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() {
-    path = std::filesystem::temp_directory_path() /
-           ("oceanref_exr_" + std::to_string(getpid()) + "_" +
-            std::to_string(reinterpret_cast<std::uintptr_t>(this)));
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path, ignored);
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
+// A fresh folder per test, named after this file.
+struct TempDir : testing::TempDir {
+  TempDir() : testing::TempDir("oceanref_exr_") {}
 };
 
 std::string error_of(const std::function<void()>& f) {
