@@ -152,6 +152,12 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
     starts[static_cast<std::size_t>(b)] =
         first_row + static_cast<int>(static_cast<long>(rows) * b / bands);
   }
+  // The band holding a sample row in [first_row, last_row).
+  const auto band_of = [&](double row) {
+    return static_cast<std::size_t>(
+        std::upper_bound(starts.begin(), starts.end() - 1, static_cast<int>(row)) - starts.begin() -
+        1);
+  };
   std::vector<std::vector<std::uint32_t>> binned(static_cast<std::size_t>(bands));
   for (std::size_t t = 0; t < g.triangles.size(); ++t) {
     const auto& v = g.triangles[t];
@@ -159,11 +165,6 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
         sample_rows_of(g.screen[v[0]], g.screen[v[1]], g.screen[v[2]], grid, job.grid.near);
     if (!(lo < last_row && hi > first_row)) continue;
     // The bands from the one holding row max(lo, first_row) to the one holding hi − 1.
-    const auto band_of = [&](double row) {
-      return static_cast<std::size_t>(
-          std::upper_bound(starts.begin(), starts.end() - 1, static_cast<int>(row)) -
-          starts.begin() - 1);
-    };
     const std::size_t b0 = band_of(std::fmax(lo, first_row));
     const std::size_t b1 = band_of(std::fmin(hi, last_row) - 1.0);
     for (std::size_t b = b0; b <= b1; ++b) binned[b].push_back(static_cast<std::uint32_t>(t));

@@ -58,6 +58,7 @@ PointFields combine_shading_at(const Ocean& ocean, const std::vector<CascadeFiel
   return combine_at(ocean, fields, evolved, x, z, mode);
 }
 
+// Gamper eq. 4.19–4.20, 4.24: p(x0) = (x0 + Σ u_i D_i, Σ η_i).
 DisplacedPoint displaced_point(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                const std::vector<EvolvedCascade>& evolved, double x0, double z0,
                                Interpolation mode, ShadingNormals normals) {
