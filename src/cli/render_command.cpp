@@ -41,24 +41,23 @@ void log_progress(const std::string& message) {
 // --tile I/N: tile I of N (0 <= I < N), {0, 1} when not given.
 std::pair<int, int> parse_tile(const std::string& text) {
   if (text.empty()) return {0, 1};
-  const std::size_t slash = text.find('/');
+  const auto refuse = [&] {
+    return UsageError("--tile",
+                      "expected I/N with integers 0 <= I < N <= " + std::to_string(kMaxExrSide) +
+                          ", got '" + escape_value(text) + "'");
+  };
+  // Digits only (no sign, no space), within [lo, hi].
   const auto integer = [&](const std::string& part, int lo, int hi) {
-    std::size_t used = 0;
-    int v = -1;
-    try {
-      v = std::stoi(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
+    if (part.empty() || part.size() > 9 ||
+        part.find_first_not_of("0123456789") != std::string::npos) {
+      throw refuse();
     }
-    if (part.empty() || used != part.size() || v < lo || v > hi || part[0] == '+' ||
-        part[0] == ' ') {
-      throw UsageError("--tile",
-                       "expected I/N with integers 0 <= I < N <= " + std::to_string(kMaxExrSide) +
-                           ", got '" + escape_value(text) + "'");
-    }
+    const int v = std::stoi(part);
+    if (v < lo || v > hi) throw refuse();
     return v;
   };
-  if (slash == std::string::npos) integer("", 0, 0);  // throws
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) throw refuse();
   const int n = integer(text.substr(slash + 1), 1, kMaxExrSide);
   const int i = integer(text.substr(0, slash), 0, n - 1);
   return {i, n};

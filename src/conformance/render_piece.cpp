@@ -21,25 +21,36 @@ namespace {
 constexpr const char* kMagic = "oceanref render piece 1\n";
 constexpr std::size_t kMaxHeaderBytes = 1 << 16;
 
-// The band's buffers in file order: f(vector) for each, Vec3 buffers and double buffers.
-template <class Image, class F>
-void visit_buffers(Image& image, bool layers, const F& f) {
-  f(image.radiance);
-  f(image.lighting_error);
-  f(image.coverage);
+// The buffers of a piece in file order: f(member) for each (a vector of Vec3 or of double), the
+// one list the writer, the reader and the merge follow.
+template <class F>
+void for_each_buffer(bool layers, const F& f) {
+  f(&RenderedImage::radiance);
+  f(&RenderedImage::lighting_error);
+  f(&RenderedImage::coverage);
   if (!layers) return;
-  f(image.sun);
-  f(image.sky);
-  f(image.sea);
-  f(image.foam);
-  f(image.depth);
-  f(image.normal);
-  f(image.x0);
+  f(&RenderedImage::sun);
+  f(&RenderedImage::sky);
+  f(&RenderedImage::sea);
+  f(&RenderedImage::foam);
+  f(&RenderedImage::depth);
+  f(&RenderedImage::normal);
+  f(&RenderedImage::x0);
+}
+
+// Doubles per pixel of a buffer's element: 1 for double, 3 for Vec3.
+template <class Value>
+constexpr std::size_t channels_of() {
+  return std::is_same_v<Value, double> ? 1 : 3;
 }
 
 // Doubles per pixel in the file.
-int doubles_per_pixel(bool layers) {
-  return layers ? 3 + 3 + 1 + 4 * 3 + 1 + 3 + 3 : 3 + 3 + 1;
+std::uint64_t doubles_per_pixel(bool layers) {
+  std::uint64_t n = 0;
+  for_each_buffer(layers, [&](auto member) {
+    n += channels_of<typename std::decay_t<decltype(RenderedImage{}.*member)>::value_type>();
+  });
+  return n;
 }
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
@@ -79,8 +90,8 @@ void write_render_piece(const std::string& path, const RenderPiece& piece) {
   std::vector<std::uint8_t> bytes;
   const std::string text = kMagic + header.dump() + "\n";
   bytes.insert(bytes.end(), text.begin(), text.end());
-  visit_buffers(b, piece.layers, [&](const auto& buffer) {
-    for (const auto& v : buffer) {
+  for_each_buffer(piece.layers, [&](auto member) {
+    for (const auto& v : b.*member) {
       if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>) {
         append_bytes(bytes, v);
       } else {
@@ -157,16 +168,16 @@ RenderPiece read_render_piece(const std::string& path) {
   }
   const std::uint64_t pixels =
       static_cast<std::uint64_t>(b.width) * static_cast<std::uint64_t>(b.height);
-  const std::uint64_t expected =
-      body + pixels * static_cast<std::uint64_t>(doubles_per_pixel(piece.layers)) * 8;
+  const std::uint64_t expected = body + pixels * doubles_per_pixel(piece.layers) * 8;
   if (size != expected) {
     fail(path, "the file holds " + std::to_string(size) + " bytes; its header describes " +
                    std::to_string(expected));
   }
   std::vector<unsigned char> row;
-  visit_buffers(b, piece.layers, [&](auto& buffer) {
+  for_each_buffer(piece.layers, [&](auto member) {
+    auto& buffer = b.*member;
     using Value = typename std::decay_t<decltype(buffer)>::value_type;
-    constexpr std::size_t channels = std::is_same_v<Value, double> ? 1 : 3;
+    constexpr std::size_t channels = channels_of<Value>();
     buffer = allocate_buffer<Value>(static_cast<std::size_t>(pixels), "a render piece's buffer");
     row.resize(static_cast<std::size_t>(pixels) * channels * 8);
     if (!in.read(reinterpret_cast<char*>(row.data()), static_cast<std::streamsize>(row.size()))) {
@@ -241,21 +252,9 @@ RenderedImage merge_render_pieces(const Scene& scene, const std::vector<RenderPi
     const RenderedImage& band = pieces[static_cast<std::size_t>(i)].band;
     image.unconverged_samples += band.unconverged_samples;
     image.integrand_evaluations += band.integrand_evaluations;
-    const auto append = [](auto& to, const auto& from) {
-      to.insert(to.end(), from.begin(), from.end());
-    };
-    append(image.radiance, band.radiance);
-    append(image.lighting_error, band.lighting_error);
-    append(image.coverage, band.coverage);
-    if (first.layers) {
-      for (const auto& [to, from] :
-           {std::pair{&image.sun, &band.sun}, std::pair{&image.sky, &band.sky},
-            std::pair{&image.sea, &band.sea}, std::pair{&image.foam, &band.foam},
-            std::pair{&image.normal, &band.normal}, std::pair{&image.x0, &band.x0}}) {
-        append(*to, *from);
-      }
-      append(image.depth, band.depth);
-    }
+    for_each_buffer(first.layers, [&](auto member) {
+      (image.*member).insert((image.*member).end(), (band.*member).begin(), (band.*member).end());
+    });
   }
   require_finite(image);
   return image;
