@@ -19,12 +19,16 @@
 #include <ImfStringAttribute.h>
 #include <ImfTiledInputPart.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <mutex>
 #include <set>
+#include <span>
 #include <stdexcept>
 
 namespace oceanref {
@@ -101,18 +105,28 @@ Imf::FrameBuffer output_frame(const ExrImage& image) {
 }
 
 // Where OpenEXR writes: an OutputFile (io/output_file.h), so every write is checked and the
-// file appears only when complete.
+// file appears only when complete. While `record` is given, the bytes written from the start of
+// the file are also appended to it (ExrRowWriter reads the header OpenEXR wrote); a seek ends
+// the contiguous record (`recorded_whole` false).
 class CheckedStream : public Imf::OStream {
  public:
   explicit CheckedStream(OutputFile& file) : Imf::OStream(file.path().c_str()), file_(file) {}
   void write(const char bytes[], int count) override {
+    if (record_ != nullptr) {
+      if (file_.position() != record_->size()) recorded_whole_ = false;
+      record_->append(bytes, static_cast<std::size_t>(count));
+    }
     file_.write(bytes, static_cast<std::size_t>(count));
   }
   std::uint64_t tellp() override { return file_.position(); }
   void seekp(std::uint64_t offset) override { file_.seek(offset); }
+  void record(std::string* bytes) { record_ = bytes; }
+  bool recorded_whole() const { return recorded_whole_; }
 
  private:
   OutputFile& file_;
+  std::string* record_ = nullptr;
+  bool recorded_whole_ = true;
 };
 
 // Runs `write` on a stream into a new OutputFile for `path` and commits it; the error names
@@ -445,6 +459,15 @@ void check_readable(const std::string& path) {
 
 void write_exr(const std::string& path, const ExrImage& image) {
   check_size(image, path);
+  if (std::all_of(image.channels.begin(), image.channels.end(),
+                  [](const ExrChannel& c) { return c.sampling == 1; })) {
+    ExrRowWriter writer(path, image);
+    std::vector<std::span<const float>> channels;
+    for (const ExrChannel& c : image.channels) channels.emplace_back(c.values);
+    writer.write_rows_from(channels, image.height);
+    writer.finish();
+    return;
+  }
   const Imf::Header header = make_header(image);
   const Imf::FrameBuffer frame = output_frame(image);
   write_through_stream(path, [&](Imf::OStream& stream) {
@@ -526,6 +549,298 @@ std::vector<ExrPart> read_exr_parts(const std::string& path, double max_bytes) {
     std::vector<ExrPart> parts;
     for (int i = 0; i < file.parts(); ++i) read_part(file, i, parts, max_bytes);
     return parts;
+  } catch (const std::exception& e) {
+    throw read_error(path, e.what());
+  }
+}
+
+// ---- ExrRowWriter ------------------------------------------------------------------------------
+
+namespace {
+// The bytes a deferred attribute holds until set_deferred gives its value.
+constexpr char kPlaceholder = '?';
+
+// Rethrows the exception being handled as the EXR writers do: path and write errors unchanged,
+// anything else (OpenEXR's exceptions) as a std::runtime_error naming the file.
+[[noreturn]] void rethrow_write_error(const std::string& path) {
+  try {
+    throw;
+  } catch (const OutputPathError&) {
+    throw;
+  } catch (const OutputWriteError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": cannot write the EXR file: " + e.what());
+  }
+}
+}  // namespace
+
+struct ExrRowWriter::State {
+  struct Deferred {
+    std::size_t length = 0;
+    std::uint64_t offset = 0;  // of the value's first byte in the file
+    bool set = false;
+    std::string value;
+  };
+  std::string path;
+  int width = 0;
+  int height = 0;
+  int origin_x = 0;
+  int origin_y = 0;
+  std::vector<std::string> channels;  // layout order
+  std::map<std::string, Deferred> deferred;
+  int rows = 0;       // rows written
+  bool done = false;  // finished, or failed: no further call is accepted
+  // Destroyed in reverse order: OpenEXR's writer (it writes its offset table), its stream, then
+  // the file (which removes the temporary unless committed).
+  std::unique_ptr<OutputFile> file;
+  std::unique_ptr<CheckedStream> stream;
+  std::unique_ptr<Imf::OutputFile> exr;
+
+  // Throws std::logic_error (naming the method `call`) once the writer takes no more calls.
+  void check_open(const char* call) const {
+    if (done) {
+      throw std::logic_error(path + ": ExrRowWriter::" + call +
+                             " after finish() or after a failed write");
+    }
+  }
+};
+
+ExrRowWriter::ExrRowWriter(const std::string& path, const ExrImage& layout,
+                           const std::map<std::string, std::size_t>& deferred)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.path = path;
+  s.width = layout.width;
+  s.height = layout.height;
+  s.origin_x = layout.origin_x;
+  s.origin_y = layout.origin_y;
+  if (layout.width < 1 || layout.height < 1) {
+    throw std::invalid_argument(path + ": size " + std::to_string(layout.width) + "x" +
+                                std::to_string(layout.height) + " is empty");
+  }
+  // The layout without its pixels (they may be large and are not needed here).
+  ExrImage shape;
+  shape.width = layout.width;
+  shape.height = layout.height;
+  shape.origin_x = layout.origin_x;
+  shape.origin_y = layout.origin_y;
+  shape.attributes = layout.attributes;
+  shape.matrices = layout.matrices;
+  shape.srgb_chromaticities = layout.srgb_chromaticities;
+  std::set<std::string> names;
+  for (const ExrChannel& c : layout.channels) {
+    if (c.sampling != 1) {
+      throw std::invalid_argument(path + ": channel " + c.name + " has sampling " +
+                                  std::to_string(c.sampling) +
+                                  "; ExrRowWriter writes full-resolution channels only");
+    }
+    if (!names.insert(c.name).second) {
+      throw std::invalid_argument(path + ": channel " + c.name + " is named twice");
+    }
+    s.channels.push_back(c.name);
+    shape.channels.push_back({c.name, 1, {}});
+  }
+  for (const auto& [name, length] : deferred) {
+    if (!layout.attributes.contains(name)) {
+      throw std::logic_error(path + ": the deferred attribute " + name +
+                             " is not a string attribute of the layout");
+    }
+    if (length > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+      throw std::invalid_argument(path + ": the deferred attribute " + name + " is too long");
+    }
+    shape.attributes[name] = std::string(length, kPlaceholder);
+    s.deferred[name].length = length;
+  }
+  std::string header;  // the bytes OpenEXR writes before the first pixel
+  try {
+    const Imf::Header exr_header = make_header(shape);
+    s.file = std::make_unique<OutputFile>(path);
+    s.stream = std::make_unique<CheckedStream>(*s.file);
+    s.stream->record(&header);
+    s.exr = std::make_unique<Imf::OutputFile>(*s.stream, exr_header);
+    s.stream->record(nullptr);
+  } catch (...) {
+    rethrow_write_error(path);
+  }
+  if (!s.stream->recorded_whole()) {
+    throw std::logic_error(path + ": OpenEXR did not write its header in one piece");
+  }
+  // Each placeholder: `name\0string\0<int32 length, little-endian><placeholder>`, exactly once.
+  for (auto& [name, d] : s.deferred) {
+    std::string pattern = name + '\0' + "string" + '\0';
+    for (int b = 0; b < 4; ++b) {
+      pattern.push_back(static_cast<char>(static_cast<std::uint32_t>(d.length) >> (8 * b)));
+    }
+    pattern.append(d.length, kPlaceholder);
+    int found = 0;
+    std::size_t at = 0;
+    for (std::size_t p = header.find(pattern); p != std::string::npos;
+         p = header.find(pattern, p + 1)) {
+      ++found;
+      at = p;
+    }
+    if (found != 1) {
+      throw std::logic_error(path + ": the placeholder of the deferred attribute " + name +
+                             " is found " + std::to_string(found) +
+                             " times in the header written (expected once)");
+    }
+    d.offset = at + pattern.size() - d.length;
+  }
+}
+
+ExrRowWriter::~ExrRowWriter() = default;
+ExrRowWriter::ExrRowWriter(ExrRowWriter&&) noexcept = default;
+ExrRowWriter& ExrRowWriter::operator=(ExrRowWriter&&) noexcept = default;
+
+int ExrRowWriter::rows_written() const {
+  return state_ ? state_->rows : 0;
+}
+
+void ExrRowWriter::write_rows(const std::vector<std::vector<float>>& channels, int rows) {
+  write_rows_from(std::vector<std::span<const float>>(channels.begin(), channels.end()), rows);
+}
+
+void ExrRowWriter::write_rows_from(const std::vector<std::span<const float>>& channels, int rows) {
+  if (!state_) throw std::logic_error("ExrRowWriter::write_rows on a moved-from writer");
+  State& s = *state_;
+  s.check_open("write_rows");
+  if (channels.size() != s.channels.size()) {
+    throw std::invalid_argument(s.path + ": " + std::to_string(channels.size()) +
+                                " channels given, the layout has " +
+                                std::to_string(s.channels.size()));
+  }
+  if (rows < 1 || rows > s.height - s.rows) {
+    throw std::invalid_argument(s.path + ": " + std::to_string(rows) + " rows given after " +
+                                std::to_string(s.rows) + " of " + std::to_string(s.height) +
+                                " (1 to " + std::to_string(s.height - s.rows) + " accepted)");
+  }
+  const std::size_t expected = static_cast<std::size_t>(rows) * static_cast<std::size_t>(s.width);
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    if (channels[i].size() != expected) {
+      throw std::invalid_argument(
+          s.path + ": channel " + s.channels[i] + " has " + std::to_string(channels[i].size()) +
+          " values for " + std::to_string(rows) + " rows, expected " + std::to_string(expected));
+    }
+  }
+  // The band's first value is pixel (origin_x, origin_y + rows written).
+  const int top = s.origin_y + s.rows;
+  const Imath::Box2i band(Imath::V2i(s.origin_x, top),
+                          Imath::V2i(s.origin_x + s.width - 1, top + rows - 1));
+  Imf::FrameBuffer frame;
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    frame.insert(s.channels[i], float_slice(channels[i].data(), band, 1));
+  }
+  try {
+    s.exr->setFrameBuffer(frame);
+    s.exr->writePixels(rows);
+  } catch (...) {
+    s.done = true;
+    rethrow_write_error(s.path);
+  }
+  s.rows += rows;
+}
+
+void ExrRowWriter::set_deferred(const std::string& name, const std::string& value) {
+  if (!state_) throw std::logic_error("ExrRowWriter::set_deferred on a moved-from writer");
+  State& s = *state_;
+  s.check_open("set_deferred");
+  const auto it = s.deferred.find(name);
+  if (it == s.deferred.end()) {
+    throw std::logic_error(s.path + ": " + name + " is not a deferred attribute of this writer");
+  }
+  if (value.size() != it->second.length) {
+    throw std::invalid_argument(s.path + ": the deferred attribute " + name + " has " +
+                                std::to_string(it->second.length) + " bytes; the value given has " +
+                                std::to_string(value.size()));
+  }
+  it->second.value = value;
+  it->second.set = true;
+}
+
+void ExrRowWriter::finish() {
+  if (!state_) throw std::logic_error("ExrRowWriter::finish on a moved-from writer");
+  State& s = *state_;
+  s.check_open("finish");
+  if (s.rows != s.height) {
+    throw std::logic_error(s.path + ": finish() after " + std::to_string(s.rows) + " of " +
+                           std::to_string(s.height) + " rows");
+  }
+  for (const auto& [name, d] : s.deferred) {
+    if (!d.set) {
+      throw std::logic_error(s.path + ": finish() before the deferred attribute " + name +
+                             " was set");
+    }
+  }
+  s.done = true;
+  try {
+    s.exr.reset();  // OpenEXR writes its offset table (a failed write marks the file failed)
+    for (const auto& [name, d] : s.deferred) {
+      s.file->seek(d.offset);
+      s.file->write(d.value);
+    }
+    s.stream.reset();
+    s.file->commit();
+  } catch (...) {
+    rethrow_write_error(s.path);
+  }
+}
+
+// ---- read_exr_rows -----------------------------------------------------------------------------
+
+std::vector<std::vector<float>> read_exr_rows(const std::string& path,
+                                              const std::vector<std::string>& channels,
+                                              int first_row, int last_row) {
+  check_readable(path);
+  limit_openexr_image_size();
+  try {
+    check_header_sizes(path);
+    Imf::MultiPartInputFile file(path.c_str());
+    if (file.parts() != 1) {
+      throw std::runtime_error("it has " + std::to_string(file.parts()) +
+                               " parts; read_exr_rows reads single-part files");
+    }
+    const Imf::Header& header = file.header(0);
+    if ((header.hasType() && header.type() != Imf::SCANLINEIMAGE) || header.hasTileDescription()) {
+      throw std::runtime_error("read_exr_rows reads scanline files only (this one is " +
+                               (header.hasType() ? header.type() : std::string("tiled")) + ")");
+    }
+    const Imath::Box2i window = header.dataWindow();
+    const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
+    const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
+    if (width < 1 || height < 1) throw std::runtime_error("empty data window");
+    if (first_row < 0 || last_row < first_row || last_row > height) {
+      throw std::runtime_error("rows " + std::to_string(first_row) + " to " +
+                               std::to_string(last_row) + " (end excluded) are outside the " +
+                               std::to_string(height) + " rows of the data window");
+    }
+    std::set<std::string> names;
+    for (const std::string& name : channels) {
+      if (!names.insert(name).second) throw std::runtime_error("channel " + name + " asked twice");
+      const Imf::Channel* c = header.channels().findChannel(name);
+      if (c == nullptr) throw std::runtime_error("no channel " + name);
+      if (c->xSampling != 1 || c->ySampling != 1) {
+        throw std::runtime_error("channel " + name + " is subsampled (read it with read_exr)");
+      }
+    }
+    const std::size_t count =
+        static_cast<std::size_t>(width) * static_cast<std::size_t>(last_row - first_row);
+    std::vector<std::vector<float>> out;
+    for (const std::string& name : channels) {
+      out.push_back(allocate_buffer<float>(count, "rows of channel " + name + " of an EXR file"));
+    }
+    if (count == 0) return out;
+    const int top = window.min.y + first_row;
+    const Imath::Box2i band(Imath::V2i(window.min.x, top),
+                            Imath::V2i(window.max.x, window.min.y + last_row - 1));
+    Imf::FrameBuffer frame;
+    for (std::size_t i = 0; i < channels.size(); ++i) {
+      frame.insert(channels[i], float_slice(out[i].data(), band, 1));
+    }
+    Imf::InputPart part(file, 0);
+    part.setFrameBuffer(frame);
+    part.readPixels(band.min.y, band.max.y);
+    return out;
   } catch (const std::exception& e) {
     throw read_error(path, e.what());
   }

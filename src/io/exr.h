@@ -1,10 +1,14 @@
 // OpenEXR output of named float channels, written whole or not at all through an OutputFile
 // (io/output_file.h): a failed or interrupted run never leaves a partial file.
-// Single-part files (write_exr/read_exr) and multi-part files (write_exr_parts/read_exr_parts).
+// Single-part files (write_exr/read_exr, or band by band: ExrRowWriter/read_exr_rows) and
+// multi-part files (write_exr_parts/read_exr_parts).
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <map>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,13 +55,62 @@ struct ExrPart {
   ExrImage image;
 };
 
-// Writes with ZIP compression; throws std::runtime_error naming the file on failure.
+// Writes with ZIP compression; throws std::runtime_error naming the file on failure. Images whose
+// channels all have sampling 1 are written by an ExrRowWriter in one band (the same bytes).
 void write_exr(const std::string& path, const ExrImage& image);
+
 // Reads every channel as float (at its own sampling), the string and M44f attributes of a
 // single-part file; a file with several parts is rejected (read it with read_exr_parts).
 // At most `max_bytes` of pixels (as floats) are allocated: a larger file is refused before its
 // pixels are read (readers also refuse data windows wider or taller than kMaxExrSide).
 ExrImage read_exr(const std::string& path, double max_bytes = kDefaultMaxMemory);
+
+// A single-part EXR written band by band (bounded memory): the same bytes as write_exr of the
+// whole image. `layout`: size, origin, channels (unique names; sampling 1; values ignored),
+// attributes, matrices, chromaticities. Attributes named in `deferred` (name -> final length in
+// bytes; each must be a string attribute of `layout`, whose value is ignored) are written as
+// placeholders of that length and must be given with set_deferred before finish (e.g. a hash of
+// the pixels, known only at the end): OpenEXR writes the header first, so the writer patches the
+// placeholder's bytes in place (seeking through the OutputFile, as OpenEXR does for its offset
+// table). The file appears only on a successful finish(); destroyed before that (or after any
+// failure), the writer leaves no file and the previous target untouched.
+// Errors: bad arguments std::invalid_argument, calls out of order std::logic_error, a deferred
+// attribute that cannot be located in the header std::logic_error, failed writes
+// OutputWriteError / std::runtime_error; every message names the file.
+class ExrRowWriter {
+ public:
+  ExrRowWriter(const std::string& path, const ExrImage& layout,
+               const std::map<std::string, std::size_t>& deferred = {});
+  ~ExrRowWriter();  // without finish(): no file appears (the temporary is removed)
+  ExrRowWriter(ExrRowWriter&&) noexcept;
+  ExrRowWriter& operator=(ExrRowWriter&&) noexcept;
+
+  // The next `rows` rows (>= 1): one vector per channel of `layout`, in layout order, each
+  // rows x width values, row-major.
+  void write_rows(const std::vector<std::vector<float>>& channels, int rows);
+  // The same from views of the caller's buffers (no copy; write_exr uses it).
+  void write_rows_from(const std::vector<std::span<const float>>& channels, int rows);
+  // The final value of a deferred attribute: exactly its declared length.
+  void set_deferred(const std::string& name, const std::string& value);
+  // Throws std::logic_error unless every row was written and every deferred attribute set;
+  // then completes the file and renames it over the target. Call once.
+  void finish();
+  int rows_written() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// Rows [first_row, last_row) of the named channels of a single-part scanline EXR, as float,
+// row-major (one vector per name, (last_row - first_row) x width values). Rows count from the
+// top of the data window (row r is EXR line origin_y + r, as in ExrImage). Reads only the
+// blocks holding those rows (bounded memory). Throws std::runtime_error naming the file: a
+// missing, repeated or subsampled channel, rows outside the data window, a tiled, deep or
+// multi-part file.
+std::vector<std::vector<float>> read_exr_rows(const std::string& path,
+                                              const std::vector<std::string>& channels,
+                                              int first_row, int last_row);
 
 // Writes a multi-part file (one part: an ordinary single-part file with a `name` attribute),
 // atomically as write_exr, ZIP-compressed scanline parts of float channels. Every part needs a

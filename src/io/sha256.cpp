@@ -1,8 +1,10 @@
 #include "io/sha256.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdio>
+#include <stdexcept>
 
 namespace oceanref {
 
@@ -22,54 +24,87 @@ std::uint32_t rotate_right(std::uint32_t x, int n) {
 }
 }  // namespace
 
-std::string sha256_hex(const std::vector<std::uint8_t>& input) {
-  std::array<std::uint32_t, 8> h{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
-                                 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
-  std::vector<std::uint8_t> m = input;
-  const std::uint64_t bits = static_cast<std::uint64_t>(input.size()) * 8;
-  m.push_back(0x80);
-  while (m.size() % 64 != 56) m.push_back(0);
-  for (int i = 7; i >= 0; --i) m.push_back(static_cast<std::uint8_t>(bits >> (8 * i)));
-  for (std::size_t chunk = 0; chunk < m.size(); chunk += 64) {
-    std::array<std::uint32_t, 64> w{};
-    for (std::size_t i = 0; i < 16; ++i) {
-      w[i] = static_cast<std::uint32_t>(m[chunk + 4 * i]) << 24 |
-             static_cast<std::uint32_t>(m[chunk + 4 * i + 1]) << 16 |
-             static_cast<std::uint32_t>(m[chunk + 4 * i + 2]) << 8 |
-             static_cast<std::uint32_t>(m[chunk + 4 * i + 3]);
-    }
-    for (std::size_t i = 16; i < 64; ++i) {
-      const std::uint32_t s0 =
-          rotate_right(w[i - 15], 7) ^ rotate_right(w[i - 15], 18) ^ (w[i - 15] >> 3);
-      const std::uint32_t s1 =
-          rotate_right(w[i - 2], 17) ^ rotate_right(w[i - 2], 19) ^ (w[i - 2] >> 10);
-      w[i] = w[i - 16] + s0 + w[i - 7] + s1;
-    }
-    std::array<std::uint32_t, 8> v = h;
-    for (std::size_t i = 0; i < 64; ++i) {
-      const std::uint32_t s1 =
-          rotate_right(v[4], 6) ^ rotate_right(v[4], 11) ^ rotate_right(v[4], 25);
-      const std::uint32_t ch = (v[4] & v[5]) ^ (~v[4] & v[6]);
-      const std::uint32_t t1 = v[7] + s1 + ch + kRound[i] + w[i];
-      const std::uint32_t s0 =
-          rotate_right(v[0], 2) ^ rotate_right(v[0], 13) ^ rotate_right(v[0], 22);
-      const std::uint32_t maj = (v[0] & v[1]) ^ (v[0] & v[2]) ^ (v[1] & v[2]);
-      const std::uint32_t t2 = s0 + maj;
-      v = {t1 + t2, v[0], v[1], v[2], v[3] + t1, v[4], v[5], v[6]};
-    }
-    for (std::size_t i = 0; i < 8; ++i) h[i] += v[i];
+void Sha256::compress(const std::uint8_t* block) {
+  std::array<std::uint32_t, 64> w{};
+  for (std::size_t i = 0; i < 16; ++i) {
+    w[i] = static_cast<std::uint32_t>(block[4 * i]) << 24 |
+           static_cast<std::uint32_t>(block[4 * i + 1]) << 16 |
+           static_cast<std::uint32_t>(block[4 * i + 2]) << 8 |
+           static_cast<std::uint32_t>(block[4 * i + 3]);
   }
+  for (std::size_t i = 16; i < 64; ++i) {
+    const std::uint32_t s0 =
+        rotate_right(w[i - 15], 7) ^ rotate_right(w[i - 15], 18) ^ (w[i - 15] >> 3);
+    const std::uint32_t s1 =
+        rotate_right(w[i - 2], 17) ^ rotate_right(w[i - 2], 19) ^ (w[i - 2] >> 10);
+    w[i] = w[i - 16] + s0 + w[i - 7] + s1;
+  }
+  std::array<std::uint32_t, 8> v = state_;
+  for (std::size_t i = 0; i < 64; ++i) {
+    const std::uint32_t s1 =
+        rotate_right(v[4], 6) ^ rotate_right(v[4], 11) ^ rotate_right(v[4], 25);
+    const std::uint32_t ch = (v[4] & v[5]) ^ (~v[4] & v[6]);
+    const std::uint32_t t1 = v[7] + s1 + ch + kRound[i] + w[i];
+    const std::uint32_t s0 =
+        rotate_right(v[0], 2) ^ rotate_right(v[0], 13) ^ rotate_right(v[0], 22);
+    const std::uint32_t maj = (v[0] & v[1]) ^ (v[0] & v[2]) ^ (v[1] & v[2]);
+    const std::uint32_t t2 = s0 + maj;
+    v = {t1 + t2, v[0], v[1], v[2], v[3] + t1, v[4], v[5], v[6]};
+  }
+  for (std::size_t i = 0; i < 8; ++i) state_[i] += v[i];
+}
+
+void Sha256::update(const void* bytes, std::size_t count) {
+  if (finished_) throw std::logic_error("Sha256::update after hex_digest");
+  if (count == 0) return;
+  const auto* p = static_cast<const std::uint8_t*>(bytes);
+  length_ += static_cast<std::uint64_t>(count);
+  if (buffered_ > 0) {  // complete the buffered block first
+    const std::size_t take = std::min(count, block_.size() - buffered_);
+    std::copy(p, p + take, block_.begin() + static_cast<std::ptrdiff_t>(buffered_));
+    buffered_ += take;
+    p += take;
+    count -= take;
+    if (buffered_ < block_.size()) return;
+    compress(block_.data());
+    buffered_ = 0;
+  }
+  for (; count >= block_.size(); p += block_.size(), count -= block_.size()) compress(p);
+  std::copy(p, p + count, block_.begin());
+  buffered_ = count;
+}
+
+std::string Sha256::hex_digest() {
+  if (finished_) throw std::logic_error("Sha256::hex_digest called twice");
+  // Padding (FIPS 180-4 5.1.1): 0x80, zeros to 56 mod 64, the length in bits big-endian.
+  const std::uint64_t bits = length_ * 8;
+  std::array<std::uint8_t, 72> padding{};
+  padding[0] = 0x80;
+  const std::size_t zeros = (buffered_ < 56 ? 56 : 120) - buffered_;
+  for (int i = 0; i < 8; ++i) {
+    padding[zeros + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(bits >> (56 - 8 * i));
+  }
+  update(padding.data(), zeros + 8);
+  finished_ = true;
   std::string hex;
   char buffer[9];
-  for (const std::uint32_t word : h) {
+  for (const std::uint32_t word : state_) {
     std::snprintf(buffer, sizeof buffer, "%08x", word);
     hex += buffer;
   }
   return hex;
 }
 
+std::string sha256_hex(const std::vector<std::uint8_t>& data) {
+  Sha256 hash;
+  hash.update(data.data(), data.size());
+  return hash.hex_digest();
+}
+
 std::string sha256_hex(const std::string& data) {
-  return sha256_hex(std::vector<std::uint8_t>(data.begin(), data.end()));
+  Sha256 hash;
+  hash.update(data.data(), data.size());
+  return hash.hex_digest();
 }
 
 void append_bytes(std::vector<std::uint8_t>& bytes, float v) {
