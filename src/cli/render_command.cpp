@@ -64,21 +64,21 @@ std::pair<int, int> parse_tile(const std::string& text) {
 }
 
 // What render and merge print (the same lines for the same image).
-void print_report(std::ostream& out, const RenderedScene& r, const Scene& scene,
+void print_report(std::ostream& out, const RenderReport& r, const Scene& scene,
                   const RenderOutputOptions& options) {
   out << "pixel_sha256," << r.pixel_sha256 << '\n';
   out << "radiance_f64_sha256," << r.radiance_f64_sha256 << '\n';
-  const LightingErrorSummary e = summarize_lighting_error(r.image);
+  const LightingErrorSummary& e = r.lighting_error;
   if (e.estimated) {
     out << "lighting_error_max_relative," << format_number(e.max_relative) << '\n';
     out << "lighting_error_median_relative," << format_number(e.median_relative) << '\n';
   }
-  out << "unconverged_samples," << r.image.unconverged_samples << '\n';
-  out << "integrand_evaluations," << r.image.integrand_evaluations << '\n';
+  out << "unconverged_samples," << r.unconverged_samples << '\n';
+  out << "integrand_evaluations," << r.integrand_evaluations << '\n';
   out << "memory_estimate_bytes," << format_number(render_memory_estimate(scene, options).total())
       << '\n';
-  if (r.image.unconverged_samples > 0) {
-    progress("oceanref", "warning: " + std::to_string(r.image.unconverged_samples) +
+  if (r.unconverged_samples > 0) {
+    progress("oceanref", "warning: " + std::to_string(r.unconverged_samples) +
                              " samples missed the lighting tolerance (their error estimates "
                              "are in --aov lighting_error)");
   }
@@ -177,11 +177,8 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       out << "integrand_evaluations," << piece.band.integrand_evaluations << '\n';
       return;
     }
-    const RenderedScene r = render_scene(scene, options);
-    progress("oceanref", "writing " + f->output);
-    write_exr(f->output, r.exr);
-    if (!f->png.empty()) write_preview_png(f->png, r.image, r.settings);
-    print_report(out, r, scene, options);
+    options.streamed = true;
+    print_report(out, render_scene_to_files(scene, options, f->output, f->png), scene, options);
   };
 }
 
@@ -213,13 +210,14 @@ std::function<void(std::ostream&)> add_merge_command(CLI::App& app) {
     RenderOutputOptions options;  // as render had them: the report's memory estimate
     options.samples_per_axis = pieces.front().samples_per_axis;
     options.aov = pieces.front().layers;
+    options.streamed = true;
     scene.image.samples_per_axis = options.samples_per_axis;
     const RenderedScene r =
         scene_output(scene, merge_render_pieces(scene, pieces, f->pieces), options.aov);
     progress("oceanref", "writing " + f->output);
     write_exr(f->output, r.exr);
     if (!f->png.empty()) write_preview_png(f->png, r.image, r.settings);
-    print_report(out, r, scene, options);
+    print_report(out, report_of(r), scene, options);
   };
 }
 

@@ -1,12 +1,15 @@
 #include "conformance/render_output.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <map>
 #include <utility>
 
 #include "conformance/provenance.h"
 #include "core/check.h"
 #include "core/format.h"
+#include "core/math.h"
 #include "io/exr_camera.h"
 #include "io/png.h"
 #include "io/sha256.h"
@@ -27,6 +30,169 @@ std::vector<ExrChannel> channels_of(const std::string& prefix, const std::vector
 
 void note(const std::function<void(const std::string&)>& log, const std::string& message) {
   if (log) log(message);
+}
+
+// The channels of the render EXR for the rows of `image` (the whole image or a band), in the
+// file's order: R, G, B, then with AOVs the layers.
+std::vector<ExrChannel> render_channels(const RenderedImage& image, bool aov) {
+  std::vector<ExrChannel> channels = channels_of("", image.radiance);
+  if (!aov) return channels;
+  for (const auto& [name, layer] :
+       {std::pair{"sun.", &image.sun}, std::pair{"sky.", &image.sky}, std::pair{"sea.", &image.sea},
+        std::pair{"foam.", &image.foam}, std::pair{"normal.", &image.normal},
+        std::pair{"x0.", &image.x0}}) {
+    for (ExrChannel& c : channels_of(name, *layer)) channels.push_back(std::move(c));
+  }
+  channels.push_back({"depth", 1, std::vector<float>(image.depth.begin(), image.depth.end())});
+  channels.push_back(
+      {"coverage", 1, std::vector<float>(image.coverage.begin(), image.coverage.end())});
+  for (ExrChannel& c : channels_of("lighting_error.", image.lighting_error)) {
+    channels.push_back(std::move(c));
+  }
+  return channels;
+}
+
+// The relative lighting errors counted by the top bits of their doubles (sign 0, exponent, 8
+// bits of mantissa: 2¹⁹ bins, monotonic in the value), for the median of a render in bands.
+constexpr int kHistogramShift = 44;
+struct LightingErrorTally {
+  LightingErrorSummary summary;
+  std::uint64_t count = 0;
+  std::vector<std::uint64_t> bins;
+
+  void add(const RenderedImage& image) {
+    if (bins.empty()) bins.assign(std::size_t{1} << (63 - kHistogramShift), 0);
+    for (std::size_t i = 0; i < image.lighting_error.size(); ++i) {
+      if (!(image.coverage[i] > 0.0)) continue;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double e = image.lighting_error[i][c];
+        if (e > 0.0) summary.estimated = true;
+        const double l = std::fabs(image.radiance[i][c]);
+        const double relative = l > 0.0 ? e / l : (e > 0.0 ? HUGE_VAL : 0.0);
+        summary.max_relative = std::fmax(summary.max_relative, relative);
+        ++bins[std::bit_cast<std::uint64_t>(relative) >> kHistogramShift];
+        ++count;
+      }
+    }
+  }
+  LightingErrorSummary result() const {
+    LightingErrorSummary r = summary;
+    if (!r.estimated) return {};
+    const std::uint64_t rank = count / 2;  // the value of rank ⌊n/2⌋ (0-based), as sorted
+    std::uint64_t below = 0;
+    for (std::size_t b = 0; b < bins.size(); ++b) {
+      below += bins[b];
+      if (below > rank) {
+        r.median_relative = std::bit_cast<double>(static_cast<std::uint64_t>(b) << kHistogramShift);
+        break;
+      }
+    }
+    return r;
+  }
+};
+
+// Everything a render reports and its preview needs, accumulated band by band in row order:
+// the same values as from the whole image.
+struct RenderTally {
+  Sha256 pixels;    // R, G, B as float32 little-endian, row-major
+  Sha256 radiance;  // the same as binary64
+  LightingErrorTally lighting_error;
+  double log_luminance_sum = 0.0;  // Σ ln(δ + L_w) in pixel order (log_average_luminance)
+  std::size_t pixel_count = 0;
+  double max_luminance = -HUGE_VAL;
+  long unconverged_samples = 0;
+  long integrand_evaluations = 0;
+
+  void add(const RenderedImage& band) {
+    std::vector<std::uint8_t> floats;
+    std::vector<std::uint8_t> doubles;
+    floats.reserve(band.radiance.size() * 12);
+    doubles.reserve(band.radiance.size() * 24);
+    for (const Vec3& v : band.radiance) {
+      for (const double c : v) {
+        append_bytes(floats, static_cast<float>(c));
+        append_bytes(doubles, c);
+      }
+      log_luminance_sum += log_luminance_term(v);
+      max_luminance = std::fmax(max_luminance, relative_luminance(v));
+    }
+    pixels.update(floats.data(), floats.size());
+    radiance.update(doubles.data(), doubles.size());
+    pixel_count += band.radiance.size();
+    lighting_error.add(band);
+    unconverged_samples += band.unconverged_samples;
+    integrand_evaluations += band.integrand_evaluations;
+  }
+  // Once, after the last band.
+  RenderReport report() {
+    return {pixels.hex_digest(), radiance.hex_digest(), lighting_error.result(),
+            unconverged_samples, integrand_evaluations};
+  }
+};
+
+RenderTally tally_of(const RenderedImage& image) {
+  RenderTally t;
+  t.add(image);
+  return t;
+}
+
+// Reinhard's L̄_w and white point of the whole image (as log_average_luminance and a loop
+// taking the largest scaled luminance would give: scaling by a positive factor and rounding
+// are monotonic, so the largest scaled luminance is the scaled largest one).
+struct PreviewScale {
+  double log_average = 0.0;
+  double white = 0.0;
+};
+PreviewScale preview_scale(const RenderTally& t, const ImageSettings& s) {
+  PreviewScale p;
+  p.log_average = math::exp(t.log_luminance_sum / static_cast<double>(t.pixel_count));
+  p.white = s.tone_white;
+  if (!(p.white > 0.0)) p.white = std::max(p.white, s.tone_key / p.log_average * t.max_luminance);
+  return p;
+}
+
+// One row of the preview from the float32 R, G, B of its pixels.
+void preview_row(const float* r, const float* g, const float* b, int width, const PreviewScale& p,
+                 const ImageSettings& s, std::vector<std::uint8_t>& out) {
+  for (int x = 0; x < width; ++x) {
+    const Vec3 c{r[x], g[x], b[x]};
+    const Vec3 mapped = reinhard(c, p.log_average, s.tone_key, p.white);
+    for (const double v : mapped) {
+      out.push_back(static_cast<std::uint8_t>(std::lround(255.0 * srgb_encode(v))));
+    }
+  }
+}
+
+// The render EXR without pixels: size, channel names, attributes; the two hashes as given.
+ExrImage render_exr_header(const Scene& scene, const RenderedImage& image, bool aov,
+                           const std::string& pixel_hash, const std::string& radiance_hash) {
+  ExrImage exr;
+  exr.width = scene.image.width;
+  exr.height = scene.image.height;
+  for (ExrChannel& c : render_channels(image, aov)) {
+    exr.channels.push_back({std::move(c.name), 1, {}});
+  }
+  const ShadingSettings& shading = scene.shading;
+  const bool reference = shading.accuracy == LightingAccuracy::reference;
+  exr.attributes["oceanref.lighting_accuracy"] =
+      reference ? "reference, relative tolerance " + format_number(shading.tolerance)
+                : "fast, sky_order " + std::to_string(shading.sky_order) + ", sun_order " +
+                      std::to_string(shading.sun_order);
+  exr.srgb_chromaticities = true;
+  exr.attributes["oceanref.version"] = oceanref_version();
+  exr.attributes["oceanref.commit"] = oceanref_commit();
+  // The view, as the standard attributes (io/exr_camera.h; docs/FILES.md).
+  const Camera camera = scene_camera(scene);
+  exr.matrices["worldToCamera"] = world_to_camera_matrix(camera);
+  exr.matrices["worldToNDC"] = world_to_ndc_matrix(camera);
+  exr.attributes["oceanref.scene_sha256"] = sha256_hex(scene.canonical);
+  exr.attributes["oceanref.seed"] = std::to_string(scene.seed);
+  exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
+  exr.attributes["oceanref.pixel_sha256"] = pixel_hash;
+  exr.attributes["oceanref.radiance_f64_sha256"] = radiance_hash;
+  exr.attributes["oceanref.unresolved_slope_variance"] =
+      format_number(image.unresolved.upwind) + "," + format_number(image.unresolved.crosswind);
+  return exr;
 }
 }  // namespace
 
@@ -65,33 +231,63 @@ RenderedScene render_scene(const std::string& path, const RenderOutputOptions& o
   return render_scene(load_scene(path), options);
 }
 
+namespace {
+// Bytes per pixel of the per-pixel buffers: radiance, the lighting error and coverage; with
+// --aov also the four terms, normal, x0 and depth (RenderJob::layers). And the EXR channels.
+double pixel_bytes(bool aov) {
+  return aov ? 8 * sizeof(Vec3) + 2 * sizeof(double) : 2 * sizeof(Vec3) + sizeof(double);
+}
+double channel_count(bool aov) {
+  return aov ? 26 : 3;
+}
+// The hash input of a band: R, G, B as float32 and as binary64.
+constexpr double kHashBytesPerPixel = 3 * (sizeof(float) + sizeof(double));
+constexpr double kLightingHistogramBytes = double(std::size_t{1} << 19) * sizeof(std::uint64_t);
+
+int samples_per_axis_of(const Scene& scene, const RenderOutputOptions& options) {
+  return options.samples_per_axis > 0 ? options.samples_per_axis : scene.image.samples_per_axis;
+}
+}  // namespace
+
+int stream_band_rows(const Scene& scene, const RenderOutputOptions& options) {
+  constexpr double kBandBytes = 256.0 * 1024 * 1024;
+  const int axis = samples_per_axis_of(scene, options);
+  const double row_bytes =
+      static_cast<double>(scene.image.width) *
+      (axis * axis * static_cast<double>(sizeof(Fragment)) + pixel_bytes(options.aov) +
+       channel_count(options.aov) * sizeof(float) + kHashBytesPerPixel);
+  const double rows =
+      options.band_rows > 0 ? options.band_rows : std::floor(kBandBytes / row_bytes);
+  return static_cast<int>(std::clamp(rows, 1.0, static_cast<double>(scene.image.height)));
+}
+
 MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOptions& options) {
   const ImageSettings& im = scene.image;
-  const int axis = options.samples_per_axis > 0 ? options.samples_per_axis : im.samples_per_axis;
-  // A tile holds its own rows (the piece's doubles are counted as the EXR channels and hash
-  // input of a whole render: fewer bytes).
+  const int axis = samples_per_axis_of(scene, options);
+  // A tile holds its own rows, a streamed render one band (the piece's doubles are counted as
+  // the EXR channels and hash input of a whole render: fewer bytes).
   const auto [first, last] = tile_rows(options.tile, options.tiles, im.height);
-  const double pixels = static_cast<double>(im.width) * (last - first);
+  const int rows = options.streamed ? stream_band_rows(scene, options) : last - first;
+  const double pixels = static_cast<double>(im.width) * rows;
   const double samples = pixels * axis * axis;
   const double vertices = static_cast<double>(scene.grid.columns) * scene.grid.rows;
   // Per vertex: x0, the displaced position, its projection and two triangles of indices.
   const double vertex_bytes = sizeof(glm::dvec2) + sizeof(glm::dvec3) + sizeof(ScreenVertex) +
                               2 * sizeof(std::array<std::uint32_t, 3>);
-  // Per pixel: radiance, the lighting error and coverage; with --aov also the four terms,
-  // normal, x0 and depth (RenderJob::layers).
-  const double pixel_bytes =
-      options.aov ? 8 * sizeof(Vec3) + 2 * sizeof(double) : 2 * sizeof(Vec3) + sizeof(double);
-  const double channels = options.aov ? 26 : 3;
   // Each item names the scene keys that size it (the scene-file contract: a size that would
   // exceed memory is rejected naming its keys).
-  const std::string image = " (render.width x render.height)";
-  return {{{kWaveGridsItem, wave_grid_bytes(scene.waves)},
-           {"projected grid (grid.columns x grid.rows)", vertices * vertex_bytes},
-           {"sample fragments (render.width x render.height x render.samples_per_pixel)",
-            samples * sizeof(Fragment)},
-           {"pixel buffers" + image, pixels * pixel_bytes},
-           {"EXR channels" + image, pixels * channels * sizeof(float)},
-           {"radiance hash input" + image, pixels * sizeof(Vec3)}}};
+  const std::string area = options.streamed && rows < im.height
+                               ? "render.width x " + std::to_string(rows) + " rows, one band"
+                               : "render.width x render.height";
+  const std::string image = " (" + area + ")";
+  return {
+      {{kWaveGridsItem, wave_grid_bytes(scene.waves)},
+       {"projected grid (grid.columns x grid.rows)", vertices * vertex_bytes},
+       {"sample fragments (" + area + " x render.samples_per_pixel)", samples * sizeof(Fragment)},
+       {"pixel buffers" + image, pixels * pixel_bytes(options.aov)},
+       {"EXR channels" + image, pixels * channel_count(options.aov) * sizeof(float)},
+       {"radiance hash input" + image, pixels * kHashBytesPerPixel},
+       {"lighting error histogram", kLightingHistogramBytes}}};
 }
 
 namespace {
@@ -139,92 +335,117 @@ RenderedScene scene_output(const Scene& scene, RenderedImage rendered, bool aov)
   RenderedScene r;
   r.settings = scene.image;
   r.image = std::move(rendered);
-  const RenderedImage& image = r.image;
-  const Camera camera = scene_camera(scene);
-  ExrImage& exr = r.exr;
-  exr.width = image.width;
-  exr.height = image.height;
-  exr.channels = channels_of("", image.radiance);
-  r.pixel_sha256 = pixel_sha256(exr.channels);
-  r.radiance_f64_sha256 = radiance_f64_sha256(image.radiance);
-  if (aov) {
-    for (const auto& [name, layer] :
-         {std::pair{"sun.", &image.sun}, std::pair{"sky.", &image.sky},
-          std::pair{"sea.", &image.sea}, std::pair{"foam.", &image.foam},
-          std::pair{"normal.", &image.normal}, std::pair{"x0.", &image.x0}}) {
-      for (ExrChannel& c : channels_of(name, *layer)) exr.channels.push_back(std::move(c));
-    }
-    exr.channels.push_back(
-        {"depth", 1, std::vector<float>(image.depth.begin(), image.depth.end())});
-    exr.channels.push_back(
-        {"coverage", 1, std::vector<float>(image.coverage.begin(), image.coverage.end())});
-    for (ExrChannel& c : channels_of("lighting_error.", image.lighting_error)) {
-      exr.channels.push_back(std::move(c));
-    }
-  }
-  const ShadingSettings& shading = scene.shading;
-  const bool reference = shading.accuracy == LightingAccuracy::reference;
-  exr.attributes["oceanref.lighting_accuracy"] =
-      reference ? "reference, relative tolerance " + format_number(shading.tolerance)
-                : "fast, sky_order " + std::to_string(shading.sky_order) + ", sun_order " +
-                      std::to_string(shading.sun_order);
-  exr.srgb_chromaticities = true;
-  exr.attributes["oceanref.version"] = oceanref_version();
-  exr.attributes["oceanref.commit"] = oceanref_commit();
-  // The view, as the standard attributes (io/exr_camera.h; docs/FILES.md).
-  exr.matrices["worldToCamera"] = world_to_camera_matrix(camera);
-  exr.matrices["worldToNDC"] = world_to_ndc_matrix(camera);
-  exr.attributes["oceanref.scene_sha256"] = sha256_hex(scene.canonical);
-  exr.attributes["oceanref.seed"] = std::to_string(scene.seed);
-  exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
-  exr.attributes["oceanref.pixel_sha256"] = r.pixel_sha256;
-  exr.attributes["oceanref.radiance_f64_sha256"] = r.radiance_f64_sha256;
-  exr.attributes["oceanref.unresolved_slope_variance"] =
-      format_number(image.unresolved.upwind) + "," + format_number(image.unresolved.crosswind);
+  const RenderReport report = tally_of(r.image).report();
+  r.pixel_sha256 = report.pixel_sha256;
+  r.radiance_f64_sha256 = report.radiance_f64_sha256;
+  r.exr = render_exr_header(scene, r.image, aov, r.pixel_sha256, r.radiance_f64_sha256);
+  r.exr.channels = render_channels(r.image, aov);
   return r;
 }
 
-LightingErrorSummary summarize_lighting_error(const RenderedImage& image) {
-  LightingErrorSummary summary;
-  std::vector<double> relative;
-  for (std::size_t i = 0; i < image.lighting_error.size(); ++i) {
-    if (!(image.coverage[i] > 0.0)) continue;
-    for (std::size_t c = 0; c < 3; ++c) {
-      const double e = image.lighting_error[i][c];
-      if (e > 0.0) summary.estimated = true;
-      const double l = std::fabs(image.radiance[i][c]);
-      relative.push_back(l > 0.0 ? e / l : (e > 0.0 ? HUGE_VAL : 0.0));
+RenderReport report_of(const RenderedScene& rendered) {
+  RenderReport r;
+  r.pixel_sha256 = rendered.pixel_sha256;
+  r.radiance_f64_sha256 = rendered.radiance_f64_sha256;
+  r.lighting_error = summarize_lighting_error(rendered.image);
+  r.unconverged_samples = rendered.image.unconverged_samples;
+  r.integrand_evaluations = rendered.image.integrand_evaluations;
+  return r;
+}
+
+RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions& options,
+                                   const std::string& exr_path, const std::string& png_path) {
+  OCEANREF_EXPECTS(options.tiles == 1 && options.streamed,
+                   "a streamed render of the whole image (options.streamed)");
+  require_within(render_memory_estimate(scene, options), options.max_memory,
+                 "--max-memory (Python: max_memory=)");
+  const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
+  p->job.estimate_fast_error = options.aov;
+  p->job.layers = options.aov;
+  const int height = p->scene.image.height;
+  const int band = stream_band_rows(p->scene, options);
+  note(options.log,
+       "rendering " + std::to_string(p->scene.image.width) + "x" + std::to_string(height) + " at " +
+           std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) + " spp" +
+           (band < height ? " in bands of " + std::to_string(band) + " rows" : std::string()));
+  const RenderFrame frame = prepare_frame(p->job, p->unresolved);
+  RenderTally tally;
+  // The hashes are known after the last band: written into the header then.
+  const std::string placeholder(64, '0');
+  std::unique_ptr<ExrRowWriter> writer;
+  for (int first = 0; first < height; first += band) {
+    const int last = std::min(height, first + band);
+    std::function<void(double)> progress;
+    if (options.progress) {
+      progress = [&](double share) {
+        options.progress((first + share * (last - first)) / static_cast<double>(height));
+      };
+    }
+    const RenderedImage image = render_rows(frame, first, last, progress);
+    if (!writer) {
+      writer = std::make_unique<ExrRowWriter>(
+          exr_path, render_exr_header(p->scene, image, options.aov, placeholder, placeholder),
+          std::map<std::string, std::size_t>{{"oceanref.pixel_sha256", 64},
+                                             {"oceanref.radiance_f64_sha256", 64}});
+    }
+    tally.add(image);
+    std::vector<std::vector<float>> values;
+    for (ExrChannel& c : render_channels(image, options.aov)) values.push_back(std::move(c.values));
+    writer->write_rows(values, last - first);
+  }
+  const PreviewScale scale = preview_scale(tally, p->scene.image);
+  RenderReport report = tally.report();
+  writer->set_deferred("oceanref.pixel_sha256", report.pixel_sha256);
+  writer->set_deferred("oceanref.radiance_f64_sha256", report.radiance_f64_sha256);
+  writer->finish();
+  if (png_path.empty()) return report;
+  note(options.log, "writing " + png_path);
+  const int width = p->scene.image.width;
+  PngRowWriter png(png_path, width, height);
+  std::vector<std::uint8_t> row;
+  for (int first = 0; first < height; first += band) {
+    const int last = std::min(height, first + band);
+    const std::vector<std::vector<float>> rgb =
+        read_exr_rows(exr_path, {"R", "G", "B"}, first, last);
+    for (int y = 0; y < last - first; ++y) {
+      const std::size_t at = static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+      row.clear();
+      preview_row(rgb[0].data() + at, rgb[1].data() + at, rgb[2].data() + at, width, scale,
+                  p->scene.image, row);
+      png.write_row(row.data());
     }
   }
-  if (!summary.estimated) return summary;
-  std::sort(relative.begin(), relative.end());
-  summary.max_relative = relative.back();
-  summary.median_relative = relative[relative.size() / 2];
-  return summary;
+  png.finish();
+  return report;
+}
+
+LightingErrorSummary summarize_lighting_error(const RenderedImage& image) {
+  LightingErrorTally t;
+  t.add(image);
+  return t.result();
 }
 
 std::vector<std::uint8_t> preview_rgb8(const RenderedImage& image, const ImageSettings& s) {
-  const double average = log_average_luminance(image.radiance);
-  double white = s.tone_white;
-  if (!(white > 0.0)) {  // Reinhard's default: the largest scaled luminance
-    for (const Vec3& c : image.radiance) {
-      white = std::max(white, s.tone_key / average * relative_luminance(c));
-    }
+  const PreviewScale scale = preview_scale(tally_of(image), s);
+  const std::vector<ExrChannel> rgb = channels_of("", image.radiance);
+  std::vector<std::uint8_t> out;
+  out.reserve(image.radiance.size() * 3);
+  for (int y = 0; y < image.height; ++y) {
+    const std::size_t at = static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width);
+    preview_row(rgb[0].values.data() + at, rgb[1].values.data() + at, rgb[2].values.data() + at,
+                image.width, scale, s, out);
   }
-  std::vector<std::uint8_t> rgb;
-  rgb.reserve(image.radiance.size() * 3);
-  for (const Vec3& c : image.radiance) {
-    const Vec3 mapped = reinhard(c, average, s.tone_key, white);
-    for (const double v : mapped) {
-      rgb.push_back(static_cast<std::uint8_t>(std::lround(255.0 * srgb_encode(v))));
-    }
-  }
-  return rgb;
+  return out;
 }
 
 void write_preview_png(const std::string& path, const RenderedImage& image,
                        const ImageSettings& settings) {
-  write_png(path, image.width, image.height, preview_rgb8(image, settings));
+  const std::vector<std::uint8_t> rgb = preview_rgb8(image, settings);
+  PngRowWriter png(path, image.width, image.height);
+  const std::size_t row = static_cast<std::size_t>(image.width) * 3;
+  for (int y = 0; y < image.height; ++y)
+    png.write_row(rgb.data() + static_cast<std::size_t>(y) * row);
+  png.finish();
 }
 
 }  // namespace oceanref

@@ -50,11 +50,21 @@ struct RenderOutputOptions {
   // render_scene_piece: tile `tile` of `tiles` (render_piece.h); render_scene: the whole image.
   int tile = 0;
   int tiles = 1;
+  // The image rendered and written band by band (render_scene_to_files): the memory estimate
+  // counts one band (stream_band_rows), not the whole image.
+  bool streamed = false;
+  int band_rows = 0;  // streamed: rows per band; 0: stream_band_rows' choice (tests set it)
 };
 
-// Every large buffer render_scene allocates for `scene` with `options` (bytes): the wave grids,
-// the projected grid, the sample fragments, the per-pixel buffers, the EXR channels and the
-// radiance serialized for its hash.
+// The pixel rows a streamed render holds at once: options.band_rows if set, else as many as fit
+// in 256 MiB of band buffers (sample fragments, pixel buffers, EXR channels, hash input); at
+// least 1, at most the image's.
+int stream_band_rows(const Scene& scene, const RenderOutputOptions& options);
+
+// Every large buffer render_scene (or, with options.streamed, render_scene_to_files) allocates
+// for `scene` with `options` (bytes): the wave grids, the projected grid, the sample fragments,
+// the per-pixel buffers, the EXR channels and the radiance serialized for its hash — of the
+// whole image, of the tile, or of one band.
 MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOptions& options);
 
 // A scene rendered to the EXR that `render` writes (attributes included) and its pixel hashes.
@@ -75,7 +85,10 @@ RenderedScene scene_output(const Scene& scene, RenderedImage image, bool aov);
 RenderPiece render_scene_piece(const Scene& scene, const RenderOutputOptions& options);
 
 // The estimated lighting error relative to the radiance, over the channels of the pixels that
-// see the sea (`estimated` false when the image carries no estimate).
+// see the sea (`estimated` false when the image carries no estimate). The median is that of a
+// histogram with bins 2⁻⁸ wide (relative; the double's exponent and 8 bits of its mantissa),
+// so that a render in bands needs no list of every value: the lower edge of the bin holding
+// the value of rank ⌊n/2⌋ (0 exactly when that value is 0), within 0.4% below it.
 struct LightingErrorSummary {
   bool estimated = false;
   double max_relative = 0.0;
@@ -83,8 +96,27 @@ struct LightingErrorSummary {
 };
 LightingErrorSummary summarize_lighting_error(const RenderedImage& image);
 
+// What `render` and `merge` print for an image (cli print_report).
+struct RenderReport {
+  std::string pixel_sha256;
+  std::string radiance_f64_sha256;
+  LightingErrorSummary lighting_error;
+  long unconverged_samples = 0;
+  long integrand_evaluations = 0;
+};
+RenderReport report_of(const RenderedScene& rendered);
+
+// A scene rendered band by band straight to `exr_path` (the bytes render_scene's EXR would
+// have: its hashes are set in the header after the last band) and, when `png_path` is not
+// empty, the preview (a second pass reading the EXR back band by band). Memory: one band
+// (stream_band_rows) besides the frame's waves and grid, whatever the image size.
+RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions& options,
+                                   const std::string& exr_path, const std::string& png_path);
+
 // The tone-mapped preview (Reinhard 2002 with the scene's key and white, sRGB transfer): 8-bit
-// RGB, row-major; write_preview_png writes it as a PNG.
+// RGB, row-major; write_preview_png writes it as a PNG. The key's log-average luminance and the
+// white point come from the double radiance, each pixel is mapped from its float32 value (what
+// the EXR holds: a streamed render maps the pixels it reads back).
 std::vector<std::uint8_t> preview_rgb8(const RenderedImage& image, const ImageSettings& settings);
 void write_preview_png(const std::string& path, const RenderedImage& image,
                        const ImageSettings& settings);

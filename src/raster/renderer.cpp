@@ -24,19 +24,7 @@ Vec3 to_vec3(const glm::dvec3& v) {
   return {v.x, v.y, v.z};
 }
 
-struct Geometry {
-  ProjectedGrid grid;
-  std::vector<glm::dvec3> world;
-  std::vector<ScreenVertex> screen;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-};
-
-// The waves of one frame as the chosen interpolation reads them: FFT grids, or for direct
-// summation h(k, t) of every cascade (each computed only when needed).
-struct FrameFields {
-  std::vector<CascadeFields> grids;
-  std::vector<EvolvedCascade> evolved;
-};
+using Geometry = FrameGeometry;
 
 FrameFields frame_fields(const RenderJob& job) {
   FrameFields f;
@@ -198,34 +186,70 @@ SlopeVariance unresolved_slope_variance(const RenderJob& job, const WaveSettings
   return slope_budget(job, waves).unresolved;
 }
 
-RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, RenderTimes* times) {
+namespace {
+// Adds the seconds since the last lap to a stage of `times` (when given).
+class StageClock {
+ public:
+  explicit StageClock(RenderTimes* times) : times_(times) {}
+  void lap(double RenderTimes::*stage) {
+    const auto now = std::chrono::steady_clock::now();
+    if (times_ != nullptr) times_->*stage += std::chrono::duration<double>(now - start_).count();
+    start_ = now;
+  }
+
+ private:
+  RenderTimes* times_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+}  // namespace
+
+RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
+                          RenderTimes* times) {
   OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
                    "a render job names its ocean and has >= 1 sample per axis");
   const ReferenceFpEnvironment fp;
-  auto clock = std::chrono::steady_clock::now();
-  const auto lap = [&](double RenderTimes::*stage) {
-    const auto now = std::chrono::steady_clock::now();
-    if (times != nullptr) times->*stage += std::chrono::duration<double>(now - clock).count();
-    clock = now;
-  };
-  const std::pair<int, int> rows = job_rows(job);  // (not a structured binding: clang 14
-  const int first_row = rows.first;                // cannot capture one in a lambda)
-  const int last_row = rows.second;
-  const FrameFields fields = frame_fields(job);
-  lap(&RenderTimes::synthesis);
+  StageClock clock(times);
+  RenderFrame frame;
+  frame.job = job;
+  frame.unresolved = unresolved;
+  frame.fields = frame_fields(job);
+  clock.lap(&RenderTimes::synthesis);
+  frame.displacement_bound = height_bound(*job.ocean);
+  frame.geometry = build_geometry(job, frame.fields, frame.displacement_bound);
+  clock.lap(&RenderTimes::grid);
+  frame.light = frame_lighting(job.sky, job.shading);
+  return frame;
+}
+
+RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, RenderTimes* times) {
+  const std::pair<int, int> rows = job_rows(job);
+  return render_rows(prepare_frame(job, unresolved, times), rows.first, rows.second, job.progress,
+                     times);
+}
+
+RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
+                          const std::function<void(double)>& progress, RenderTimes* times) {
+  const RenderJob& job = frame.job;
+  OCEANREF_EXPECTS(0 <= first_row && first_row < last_row && last_row <= job.camera.height,
+                   "pixel rows [" + std::to_string(first_row) + ", " + std::to_string(last_row) +
+                       ") of a nonempty band inside the " + std::to_string(job.camera.height) +
+                       " rows of the image");
+  const ReferenceFpEnvironment fp;
+  StageClock clock(times);
+  const FrameFields& fields = frame.fields;
+  const Geometry& g = frame.geometry;
+  const FrameLighting& light = frame.light;
+  const SlopeVariance& unresolved = frame.unresolved;
   RenderedImage image;
   image.width = job.camera.width;
   image.height = last_row - first_row;
   image.first_row = first_row;
   image.unresolved = unresolved;
-  image.displacement_bound = height_bound(*job.ocean);
-  const Geometry g = build_geometry(job, fields, image.displacement_bound);
-  lap(&RenderTimes::grid);
+  image.displacement_bound = frame.displacement_bound;
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const int s = job.samples_per_axis;
   const std::vector<Fragment> fragments = raster_pass(job, g, grid, first_row * s, last_row * s);
-  lap(&RenderTimes::raster);
-  const FrameLighting light = frame_lighting(job.sky, job.shading);
+  clock.lap(&RenderTimes::raster);
   const auto pixels =
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   const auto pixel_buffer = [pixels](const char* layer) {
@@ -302,11 +326,11 @@ RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, Rend
     unconverged += row_unconverged;
     evaluations += row_evaluations;
     const int done = ++rows_done;
-    if (job.progress && (done % report_every == 0 || done == image.height)) {
-      job.progress(static_cast<double>(done) / image.height);
+    if (progress && (done % report_every == 0 || done == image.height)) {
+      progress(static_cast<double>(done) / image.height);
     }
   });
-  lap(&RenderTimes::shading);
+  clock.lap(&RenderTimes::shading);
   image.unconverged_samples = unconverged;
   image.integrand_evaluations = evaluations;
   require_finite(image);
@@ -383,14 +407,13 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
       0 <= pixel_x && pixel_x < job.camera.width && 0 <= pixel_y && pixel_y < job.camera.height,
       "pixel (" + std::to_string(pixel_x) + ", " + std::to_string(pixel_y) + ") inside the " +
           std::to_string(job.camera.width) + " x " + std::to_string(job.camera.height) + " image");
+  const RenderFrame frame = prepare_frame(job, unresolved);
   const ReferenceFpEnvironment fp;
-  const FrameFields fields = frame_fields(job);
-  const Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const int s = job.samples_per_axis;
   // The pixel's sample rows only (the fragments of a full pass there, bit for bit).
-  const std::vector<Fragment> fragments = raster_pass(job, g, grid, pixel_y * s, pixel_y * s + s);
-  const FrameLighting light = frame_lighting(job.sky, job.shading);
+  const std::vector<Fragment> fragments =
+      raster_pass(job, frame.geometry, grid, pixel_y * s, pixel_y * s + s);
   std::vector<SampleProbe> out;
   for (int b = 0; b < s; ++b) {
     for (int a = 0; a < s; ++a) {
@@ -400,7 +423,8 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
           fragments[static_cast<std::size_t>(b) * static_cast<std::size_t>(grid.columns()) +
                     static_cast<std::size_t>(column)];
       const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-      SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
+      SampleProbe p =
+          shade_sample(job, frame.fields, frame.geometry, f, ray, frame.light, unresolved);
       p.image_x = grid.sample_x(column);
       p.image_y = grid.sample_y(row);
       out.push_back(p);

@@ -94,10 +94,41 @@ class NonFiniteOutputError : public std::runtime_error {
 // lighting_error, depth, normal, x0, coverage), the channel and the terms of that pixel.
 void require_finite(const RenderedImage& image);
 
-// Renders the job; the image is checked with require_finite (a non-finite pixel is an error,
-// whatever its cause).
+// Renders the job (prepare_frame, then render_rows of the job's rows); the image is checked
+// with require_finite (a non-finite pixel is an error, whatever its cause).
 RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved,
                      RenderTimes* times = nullptr);
+
+// The waves of one frame as the chosen interpolation reads them: FFT grids, or for direct
+// summation h(k, t) of every cascade.
+struct FrameFields {
+  std::vector<CascadeFields> grids;
+  std::vector<EvolvedCascade> evolved;
+};
+// The projected grid of one frame with its vertices on the displaced surface and on screen.
+struct FrameGeometry {
+  ProjectedGrid grid;
+  std::vector<glm::dvec3> world;  // [j·columns + i], like grid.base
+  std::vector<ScreenVertex> screen;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+// What every band of a frame shares, computed once: a render in bands (streaming, bounded
+// memory) prepares the frame, then renders its rows band by band.
+struct RenderFrame {
+  RenderJob job;  // its first_row/last_row are not used: render_rows names the rows
+  SlopeVariance unresolved;
+  double displacement_bound = 0.0;
+  FrameFields fields;
+  FrameGeometry geometry;
+  FrameLighting light;
+};
+RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
+                          RenderTimes* times = nullptr);
+// Pixel rows [first_row, last_row) of the frame: the same bits as those rows of a whole render
+// (checked with require_finite). `progress` (may be empty) gets the band's finished share.
+RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
+                          const std::function<void(double)>& progress = {},
+                          RenderTimes* times = nullptr);
 
 // The mesh render rasterizes for the job's frame: the projected grid (its displacement bound
 // the ocean's height_bound), every vertex on the displaced surface, (x0 + Σu_iD_i, Σ η_i, z0 +

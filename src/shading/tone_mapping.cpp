@@ -13,8 +13,12 @@ double relative_luminance(const Vec3& c) {
 double log_average_luminance(const std::vector<Vec3>& image, double delta) {
   if (image.empty()) return 0.0;
   double sum = 0.0;
-  for (const Vec3& c : image) sum += math::log(delta + std::fmax(relative_luminance(c), 0.0));
+  for (const Vec3& c : image) sum += log_luminance_term(c, delta);
   return math::exp(sum / static_cast<double>(image.size()));
+}
+
+double log_luminance_term(const Vec3& rgb, double delta) {
+  return math::log(delta + std::fmax(relative_luminance(rgb), 0.0));
 }
 
 Vec3 reinhard(const Vec3& rgb, double log_average, double key, double white) {

@@ -15,6 +15,9 @@ namespace oceanref {
 double relative_luminance(const Vec3& rgb);
 // L̄_w = exp((1/N) Σ ln(δ + L_w))  (Reinhard eq. 1), δ a small offset for black pixels.
 double log_average_luminance(const std::vector<Vec3>& image, double delta = 1e-4);
+// One pixel's term ln(δ + max(L_w, 0)) of the sum above, which runs in pixel order (so that a
+// caller summing band by band gets the same bits).
+double log_luminance_term(const Vec3& rgb, double delta = 1e-4);
 // L_d = L(1 + L/L_white²)/(1 + L) with L = (a/L̄_w)·L_w  (Reinhard eq. 2 and 4); the colour is
 // scaled by L_d/L_w.
 Vec3 reinhard(const Vec3& rgb, double log_average, double key, double white);

@@ -1,0 +1,130 @@
+// A render streamed band by band to its files (render_scene_to_files, `oceanref render`) is the
+// render held whole (render_scene, then write_exr and write_preview_png, as `merge` writes it):
+// the same EXR and PNG bytes and the same report for any band height, with and without the
+// layers, in fast and reference accuracy; and the report's median lighting error, kept as a
+// histogram for the bands, is within its stated bin of the exact median.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "conformance/render_output.h"
+#include "io/exr.h"
+#include "scene/scene.h"
+
+#include "temp_dir.h"
+
+using namespace oceanref;
+
+namespace {
+struct TempDir : testing::TempDir {
+  TempDir() : testing::TempDir("oceanref_streaming_") {}
+};
+
+std::vector<char> bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A small scene with waves, sun, sky and whitecaps, in the given accuracy.
+Scene small_scene(const std::string& accuracy) {
+  nlohmann::json s = nlohmann::json::parse(R"({
+    "seed": 5,
+    "waves": {"spectrum": {"model": "jonswap", "wind_speed": 9, "fetch": 60000},
+              "cascades": {"largest": 200, "count": 2, "factor": "golden-small"},
+              "resolution": 32, "choppiness": -1.0},
+    "camera": {"position": [0, 4, 0], "look_at": [0, 1, 40]},
+    "grid": {"columns": 64, "rows": 64},
+    "atmosphere": {"sun_zenith_deg": 70, "sun_azimuth_deg": 80},
+    "shading": {"whitecaps": true, "whitecap_threshold": 0.7},
+    "render": {"width": 23, "height": 19, "samples_per_pixel": 4}})");
+  s["shading"]["accuracy"] = accuracy;
+  if (accuracy == "reference") s["shading"]["tolerance"] = 1e-3;
+  return parse_scene(s);
+}
+}  // namespace
+
+TEST_CASE("a render streamed in bands writes the bytes of the whole render") {
+  TempDir dir;
+  for (const std::string accuracy : {"fast", "reference"}) {
+    const Scene scene = small_scene(accuracy);
+    for (const bool aov : {false, true}) {
+      CAPTURE(accuracy);
+      CAPTURE(aov);
+      RenderOutputOptions options;
+      options.threads = 2;
+      options.aov = aov;
+      const RenderedScene whole = render_scene(scene, options);
+      const std::string whole_exr = dir.file("whole.exr");
+      const std::string whole_png = dir.file("whole.png");
+      write_exr(whole_exr, whole.exr);
+      write_preview_png(whole_png, whole.image, whole.settings);
+      const RenderReport expected = report_of(whole);
+      for (const int band : {1, 4, 7, 19, 0}) {
+        CAPTURE(band);
+        options.streamed = true;
+        options.band_rows = band;
+        const std::string exr = dir.file("band.exr");
+        const std::string png = dir.file("band.png");
+        const RenderReport r = render_scene_to_files(scene, options, exr, png);
+        CHECK(r.pixel_sha256 == expected.pixel_sha256);
+        CHECK(r.radiance_f64_sha256 == expected.radiance_f64_sha256);
+        CHECK(r.lighting_error.estimated == expected.lighting_error.estimated);
+        CHECK(r.lighting_error.max_relative == expected.lighting_error.max_relative);
+        CHECK(r.lighting_error.median_relative == expected.lighting_error.median_relative);
+        CHECK(r.unconverged_samples == expected.unconverged_samples);
+        CHECK(r.integrand_evaluations == expected.integrand_evaluations);
+        CHECK(bytes_of(exr) == bytes_of(whole_exr));
+        CHECK(bytes_of(png) == bytes_of(whole_png));
+        options.streamed = false;
+      }
+    }
+  }
+}
+
+TEST_CASE("the memory estimate of a streamed render counts one band") {
+  Scene scene = small_scene("fast");
+  scene.image.width = 4096;
+  scene.image.height = 4096;
+  RenderOutputOptions options;
+  const double whole = render_memory_estimate(scene, options).total();
+  options.streamed = true;
+  const int band = stream_band_rows(scene, options);
+  CHECK(band >= 1);
+  CHECK(band < 4096);
+  const double streamed = render_memory_estimate(scene, options).total();
+  CHECK(streamed < whole);
+  CHECK(streamed < 320.0 * 1024 * 1024);  // the 256 MiB band and the frame's grids
+  scene.image.height = 16384;
+  CHECK(render_memory_estimate(scene, options).total() == streamed);  // independent of height
+  options.band_rows = 3;
+  CHECK(stream_band_rows(scene, options) == 3);
+}
+
+TEST_CASE("the median lighting error is the lower edge of its 2^-8 bin") {
+  const Scene scene = small_scene("reference");
+  RenderOutputOptions options;
+  options.threads = 2;
+  const RenderedScene r = render_scene(scene, options);
+  std::vector<double> relative;
+  for (std::size_t i = 0; i < r.image.radiance.size(); ++i) {
+    if (!(r.image.coverage[i] > 0.0)) continue;
+    for (std::size_t c = 0; c < 3; ++c) {
+      relative.push_back(r.image.lighting_error[i][c] / std::fabs(r.image.radiance[i][c]));
+    }
+  }
+  REQUIRE(relative.size() > 10);
+  std::sort(relative.begin(), relative.end());
+  const double exact = relative[relative.size() / 2];
+  const LightingErrorSummary s = summarize_lighting_error(r.image);
+  REQUIRE(s.estimated);
+  CHECK(s.max_relative == relative.back());
+  CHECK(s.median_relative <= exact);
+  CHECK(s.median_relative > exact * (1.0 - std::ldexp(1.0, -8)));
+}
