@@ -498,23 +498,23 @@ check_estimate() {
 peak=$(peak_bytes render "$tmp/memory.json" --threads 2 -o "$tmp/memory.exr")
 check_estimate render "$(sed -n 's/^memory_estimate_bytes,//p' "$tmp/peak.out")" "$peak"
 # A render streams its rows to the files in bands (issue 16): its memory is one band, whatever
-# the image's height. 2048 px wide at 1 spp is about 910 rows a band; 1024 and 4096 rows (2 and
-# 5 bands, sky only so that it is quick) must peak alike and have the same estimate. (Not under
-# AddressSanitizer, whose quarantine keeps freed bands.)
+# the image's height. 2048 px wide at 1 spp with --aov (312 bytes a pixel) is 372 rows a band;
+# 512 and 2048 rows (2 and 6 bands, sky only so that it is quick) must peak alike and have the
+# same estimate. (Not under AddressSanitizer, whose quarantine keeps freed bands.)
 if [ -z "${OCEANREF_SANITIZED:-}" ]; then
   cat >"$tmp/tall.json" <<'EOF'
 {"seed": 7, "waves": {"spectrum": {"model": "jonswap"}, "cascades": {"sizes": [200, 20]},
  "resolution": 64}, "grid": {"columns": 64, "rows": 64},
  "camera": {"position": [0, 4, 0], "look_at": [0, 60, 40]},
  "shading": {"accuracy": "fast", "sky_order": 1, "sun_order": 0},
- "render": {"width": 2048, "height": 1024, "samples_per_pixel": 1}}
+ "render": {"width": 2048, "height": 512, "samples_per_pixel": 1}}
 EOF
-  peak_short=$(peak_bytes render "$tmp/tall.json" --threads 2 -o "$tmp/tall.exr" --png "$tmp/tall.png")
+  peak_short=$(peak_bytes render "$tmp/tall.json" --threads 2 -o "$tmp/tall.exr" --png "$tmp/tall.png" --aov)
   estimate_short=$(sed -n 's/^memory_estimate_bytes,//p' "$tmp/peak.out")
-  sed -i 's/"height": 1024/"height": 4096/' "$tmp/tall.json"
-  peak_tall=$(peak_bytes render "$tmp/tall.json" --threads 2 -o "$tmp/tall.exr" --png "$tmp/tall.png")
+  sed -i 's/"height": 512/"height": 2048/' "$tmp/tall.json"
+  peak_tall=$(peak_bytes render "$tmp/tall.json" --threads 2 -o "$tmp/tall.exr" --png "$tmp/tall.png" --aov)
   estimate_tall=$(sed -n 's/^memory_estimate_bytes,//p' "$tmp/peak.out")
-  check_estimate "render (4096 rows)" "$estimate_tall" "$peak_tall"
+  check_estimate "render (2048 rows)" "$estimate_tall" "$peak_tall"
   checks=$((checks + 1))
   [ "$estimate_short" = "$estimate_tall" ] ||
     fail "streamed render: the estimate grew with the height ($estimate_short -> $estimate_tall B)"
@@ -528,7 +528,7 @@ sed 's/"resolution": 128/"resolution": 256/' "$tmp/memory.json" >"$tmp/memory256
 estimate=$(sed -n 's/^oceanref: needs an estimated \([0-9.]*\) MiB.*/\1/p' "$tmp/err")
 peak=$(peak_bytes fields "$tmp/memory256.json" --threads 2 -o "$tmp/fields.exr")
 check_estimate fields "$(awk -v m="$estimate" 'BEGIN { print m * 1048576 }')" "$peak"
-expect 2 "^oceanref: needs an estimated 15[0-9](\.[0-9])? MiB of memory \(largest: sample fragments \(render.width x render.height x render.samples_per_pixel\) 80 MiB, pixel buffers \(render.width x render.height\) 28 MiB, radiance hash input \(render.width x render.height\) 18 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
+expect 2 "^oceanref: needs an estimated 13[0-9](\.[0-9])? MiB of memory \(largest: sample fragments \(render.width x render.height x render.samples_per_pixel\) 80 MiB, pixel buffers \(render.width x render.height\) 28 MiB, wave grids \(waves.resolution, waves.low_resolution, waves.cascades\) 10 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
 # The per-pixel layers of --aov (sun, sky, sea, foam, depth, normal, x0) are counted only when asked.
 expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers \(render.width x render.height\) 104 MiB," render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M --aov
 [ -e "$tmp/refused.exr" ] && fail "a render refused for memory wrote its output"

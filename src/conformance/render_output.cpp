@@ -104,20 +104,25 @@ struct RenderTally {
   long integrand_evaluations = 0;
 
   void add(const RenderedImage& band) {
+    // Hashed row by row: the serialized bytes of one row at a time.
     std::vector<std::uint8_t> floats;
     std::vector<std::uint8_t> doubles;
-    floats.reserve(band.radiance.size() * 12);
-    doubles.reserve(band.radiance.size() * 24);
-    for (const Vec3& v : band.radiance) {
-      for (const double c : v) {
-        append_bytes(floats, static_cast<float>(c));
-        append_bytes(doubles, c);
+    const auto width = static_cast<std::size_t>(band.width);
+    for (std::size_t start = 0; start < band.radiance.size(); start += width) {
+      floats.clear();
+      doubles.clear();
+      for (std::size_t i = start; i < start + width; ++i) {
+        const Vec3& v = band.radiance[i];
+        for (const double c : v) {
+          append_bytes(floats, static_cast<float>(c));
+          append_bytes(doubles, c);
+        }
+        log_luminance_sum += log_luminance_term(v);
+        max_luminance = std::fmax(max_luminance, relative_luminance(v));
       }
-      log_luminance_sum += log_luminance_term(v);
-      max_luminance = std::fmax(max_luminance, relative_luminance(v));
+      pixels.update(floats.data(), floats.size());
+      radiance.update(doubles.data(), doubles.size());
     }
-    pixels.update(floats.data(), floats.size());
-    radiance.update(doubles.data(), doubles.size());
     pixel_count += band.radiance.size();
     lighting_error.add(band);
     unconverged_samples += band.unconverged_samples;
@@ -240,8 +245,6 @@ double pixel_bytes(bool aov) {
 double channel_count(bool aov) {
   return aov ? 26 : 3;
 }
-// The hash input of a band: R, G, B as float32 and as binary64.
-constexpr double kHashBytesPerPixel = 3 * (sizeof(float) + sizeof(double));
 constexpr double kLightingHistogramBytes = double(std::size_t{1} << 19) * sizeof(std::uint64_t);
 
 int samples_per_axis_of(const Scene& scene, const RenderOutputOptions& options) {
@@ -252,10 +255,9 @@ int samples_per_axis_of(const Scene& scene, const RenderOutputOptions& options) 
 int stream_band_rows(const Scene& scene, const RenderOutputOptions& options) {
   constexpr double kBandBytes = 256.0 * 1024 * 1024;
   const int axis = samples_per_axis_of(scene, options);
-  const double row_bytes =
-      static_cast<double>(scene.image.width) *
-      (axis * axis * static_cast<double>(sizeof(Fragment)) + pixel_bytes(options.aov) +
-       channel_count(options.aov) * sizeof(float) + kHashBytesPerPixel);
+  const double row_bytes = static_cast<double>(scene.image.width) *
+                           (axis * axis * static_cast<double>(sizeof(Fragment)) +
+                            pixel_bytes(options.aov) + channel_count(options.aov) * sizeof(float));
   const double rows =
       options.band_rows > 0 ? options.band_rows : std::floor(kBandBytes / row_bytes);
   return static_cast<int>(std::clamp(rows, 1.0, static_cast<double>(scene.image.height)));
@@ -264,8 +266,7 @@ int stream_band_rows(const Scene& scene, const RenderOutputOptions& options) {
 MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOptions& options) {
   const ImageSettings& im = scene.image;
   const int axis = samples_per_axis_of(scene, options);
-  // A tile holds its own rows, a streamed render one band (the piece's doubles are counted as
-  // the EXR channels and hash input of a whole render: fewer bytes).
+  // A tile holds its own rows (written from its pixel buffers), a streamed render one band.
   const auto [first, last] = tile_rows(options.tile, options.tiles, im.height);
   const int rows = options.streamed ? stream_band_rows(scene, options) : last - first;
   const double pixels = static_cast<double>(im.width) * rows;
@@ -286,7 +287,6 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
        {"sample fragments (" + area + " x render.samples_per_pixel)", samples * sizeof(Fragment)},
        {"pixel buffers" + image, pixels * pixel_bytes(options.aov)},
        {"EXR channels" + image, pixels * channel_count(options.aov) * sizeof(float)},
-       {"radiance hash input" + image, pixels * kHashBytesPerPixel},
        {"lighting error histogram", kLightingHistogramBytes}}};
 }
 

@@ -57,14 +57,14 @@ struct RenderOutputOptions {
 };
 
 // The pixel rows a streamed render holds at once: options.band_rows if set, else as many as fit
-// in 256 MiB of band buffers (sample fragments, pixel buffers, EXR channels, hash input); at
-// least 1, at most the image's.
+// in 256 MiB of band buffers (sample fragments, pixel buffers, EXR channels); at least 1, at
+// most the image's.
 int stream_band_rows(const Scene& scene, const RenderOutputOptions& options);
 
 // Every large buffer render_scene (or, with options.streamed, render_scene_to_files) allocates
 // for `scene` with `options` (bytes): the wave grids, the projected grid, the sample fragments,
-// the per-pixel buffers, the EXR channels and the radiance serialized for its hash — of the
-// whole image, of the tile, or of one band.
+// the per-pixel buffers and the EXR channels — of the whole image, of the tile, or of one band
+// — and the lighting error's histogram.
 MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOptions& options);
 
 // A scene rendered to the EXR that `render` writes (attributes included) and its pixel hashes.
