@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -52,38 +53,42 @@ Scene small_scene(const std::string& accuracy) {
 
 TEST_CASE("a render streamed in bands writes the bytes of the whole render") {
   TempDir dir;
-  for (const std::string accuracy : {"fast", "reference"}) {
+  // Fast with and without the layers, reference (costlier: the sanitizer builds run this too)
+  // with them, so that its error estimates reach the files.
+  for (const auto& mode :
+       {std::pair{"fast", false}, std::pair{"fast", true}, std::pair{"reference", true}}) {
+    const std::string accuracy = mode.first;  // (no structured binding: CAPTURE is a lambda)
+    const bool aov = mode.second;
     const Scene scene = small_scene(accuracy);
-    for (const bool aov : {false, true}) {
-      CAPTURE(accuracy);
-      CAPTURE(aov);
-      RenderOutputOptions options;
-      options.threads = 2;
-      options.aov = aov;
-      const RenderedScene whole = render_scene(scene, options);
-      const std::string whole_exr = dir.file("whole.exr");
-      const std::string whole_png = dir.file("whole.png");
-      write_exr(whole_exr, whole.exr);
-      write_preview_png(whole_png, whole.image, whole.settings);
-      const RenderReport expected = report_of(whole);
-      for (const int band : {1, 4, 7, 19, 0}) {
-        CAPTURE(band);
-        options.streamed = true;
-        options.band_rows = band;
-        const std::string exr = dir.file("band.exr");
-        const std::string png = dir.file("band.png");
-        const RenderReport r = render_scene_to_files(scene, options, exr, png);
-        CHECK(r.pixel_sha256 == expected.pixel_sha256);
-        CHECK(r.radiance_f64_sha256 == expected.radiance_f64_sha256);
-        CHECK(r.lighting_error.estimated == expected.lighting_error.estimated);
-        CHECK(r.lighting_error.max_relative == expected.lighting_error.max_relative);
-        CHECK(r.lighting_error.median_relative == expected.lighting_error.median_relative);
-        CHECK(r.unconverged_samples == expected.unconverged_samples);
-        CHECK(r.integrand_evaluations == expected.integrand_evaluations);
-        CHECK(bytes_of(exr) == bytes_of(whole_exr));
-        CHECK(bytes_of(png) == bytes_of(whole_png));
-        options.streamed = false;
-      }
+    CAPTURE(accuracy);
+    CAPTURE(aov);
+    RenderOutputOptions options;
+    options.threads = 2;
+    options.aov = aov;
+    const RenderedScene whole = render_scene(scene, options);
+    const std::string whole_exr = dir.file("whole.exr");
+    const std::string whole_png = dir.file("whole.png");
+    write_exr(whole_exr, whole.exr);
+    write_preview_png(whole_png, whole.image, whole.settings);
+    const RenderReport expected = report_of(whole);
+    for (const int band : {1, 4, 7, 19, 0}) {
+      if (accuracy == "reference" && band != 4) continue;
+      CAPTURE(band);
+      options.streamed = true;
+      options.band_rows = band;
+      const std::string exr = dir.file("band.exr");
+      const std::string png = dir.file("band.png");
+      const RenderReport r = render_scene_to_files(scene, options, exr, png);
+      CHECK(r.pixel_sha256 == expected.pixel_sha256);
+      CHECK(r.radiance_f64_sha256 == expected.radiance_f64_sha256);
+      CHECK(r.lighting_error.estimated == expected.lighting_error.estimated);
+      CHECK(r.lighting_error.max_relative == expected.lighting_error.max_relative);
+      CHECK(r.lighting_error.median_relative == expected.lighting_error.median_relative);
+      CHECK(r.unconverged_samples == expected.unconverged_samples);
+      CHECK(r.integrand_evaluations == expected.integrand_evaluations);
+      CHECK(bytes_of(exr) == bytes_of(whole_exr));
+      CHECK(bytes_of(png) == bytes_of(whole_png));
+      options.streamed = false;
     }
   }
 }

@@ -45,8 +45,12 @@ report = dict(line.split(",", 1) for line in result.stdout.splitlines())
 commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], stdout=subprocess.PIPE,
                         text=True).stdout.strip()
 print(f"# streamed render, default scene fast, {width}x{height}, 1 spp")
-print(f"# {time.strftime('%Y-%m-%d')}, {platform.processor() or platform.machine()}, "
-      f"{os.cpu_count()} cores, commit {commit}")
+model = platform.machine()
+for line in open("/proc/cpuinfo") if os.path.exists("/proc/cpuinfo") else []:
+    if line.startswith("model name"):
+        model = line.split(":", 1)[1].strip()
+        break
+print(f"# {time.strftime('%Y-%m-%d')}, {model}, {os.cpu_count()} cores, commit {commit}")
 print(f"peak_rss_bytes,{peak}")
 print(f"peak_rss_mib,{peak / 2**20:.1f}")
 print(f"memory_estimate_bytes,{report['memory_estimate_bytes']}")
