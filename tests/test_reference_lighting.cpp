@@ -394,6 +394,49 @@ TEST_CASE("reference sun disk: the thin arc of a grazing view on a near-mirror s
   }
 }
 
+TEST_CASE("reflected_sun_bound bounds the sun disk's integral; below the tolerance it is skipped") {
+  // Over the sweep, glints and grazing views included, and views moved across and away from the
+  // sun's mirror direction: the bound is never below the converged integral. Far from the
+  // glitter it is tiny, and an absolute tolerance above it returns 0 with the bound as the error,
+  // without an evaluation; a tolerance below it integrates.
+  for (const Case& c : kSweep) {
+    CAPTURE(describe(c));
+    const Sky sky = sky_of(c);
+    const SurfaceFrame f = wind_frame(c.normal, 0.3);
+    const ScalarEstimate r = reflected_sun_reference(sky.sun_direction, kSunAngularRadius, c.view,
+                                                     f, c.s, {}, 1e-8, 0.0);
+    const double bound = reflected_sun_bound(sky.sun_direction, kSunAngularRadius, c.view, f, c.s);
+    CHECK(r.value <= bound);
+  }
+  const Vec3 sun = unit(0.2, 0.4, 0.9);
+  const SurfaceFrame flat = wind_frame(unit(0, 1, 0), 0.0);
+  for (const double s2 : {1e-6, 1e-4, 0.01, 0.1}) {
+    for (const double offset : {0.0, 0.002, 0.01, 0.03, 0.1, 0.3}) {
+      CAPTURE(s2);
+      CAPTURE(offset);
+      const Vec3 view = unit(-0.2 + offset, 0.4, -0.9 + offset);
+      const SlopeVariance s{s2, 0.7 * s2};
+      const ScalarEstimate r =
+          reflected_sun_reference(sun, kSunAngularRadius, view, flat, s, {}, 1e-8, 0.0);
+      CHECK(r.value <= reflected_sun_bound(sun, kSunAngularRadius, view, flat, s));
+    }
+  }
+  const Vec3 away = unit(0.6, 0.3, 0.5);  // far from the glint of a calm sea
+  const SlopeVariance calm{0.01, 0.01};
+  const double bound = reflected_sun_bound(sun, kSunAngularRadius, away, flat, calm);
+  CHECK(bound > 0.0);
+  CHECK(bound < 1e-20);
+  const ScalarEstimate skipped =
+      reflected_sun_reference(sun, kSunAngularRadius, away, flat, calm, {}, 1e-6, 2.0 * bound);
+  CHECK(skipped.value == 0.0);
+  CHECK(skipped.error == bound);
+  CHECK(skipped.evaluations == 0);
+  const ScalarEstimate integrated =
+      reflected_sun_reference(sun, kSunAngularRadius, away, flat, calm, {}, 1e-6, 0.5 * bound);
+  CHECK(integrated.evaluations > 0);
+  CHECK(integrated.value <= bound);
+}
+
 TEST_CASE("tightening the tolerance 100x moves no value by more than its error estimate") {
   for (const Case& c : kSweep) {
     CAPTURE(describe(c));

@@ -238,6 +238,28 @@ RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& f, Slo
   return {r.value, r.error, r.evaluations, r.converged};
 }
 
+double reflected_sun_bound(const Vec3& sun, double radius, const Vec3& view, const SurfaceFrame& f,
+                           SlopeVariance s) {
+  require_roughness(s);
+  const double vn = dot(view, f.normal);
+  if (!(vn > 0.0)) return 0.0;
+  Vec3 h{};  // H_S = S + V, unnormalized
+  for (std::size_t k = 0; k < 3; ++k) h[k] = sun[k] + view[k];
+  const double hn = dot(h, f.normal);
+  if (!(hn > radius)) return HUGE_VAL;
+  const double zx = dot(h, f.tangent_x) / hn;
+  const double zy = dot(h, f.tangent_y) / hn;
+  const double shift = radius * std::sqrt(1.0 + zx * zx + zy * zy) / (hn - radius);
+  const double distance = std::sqrt(zx * zx / s.upwind + zy * zy / s.crosswind);
+  const double nearest =
+      std::fmax(0.0, distance - shift / std::sqrt(std::fmin(s.upwind, s.crosswind)));
+  const double density =
+      math::exp(-0.5 * nearest * nearest) / (2.0 * kPi * std::sqrt(s.upwind * s.crosswind));
+  const double cos_half = (hn - radius) / (std::sqrt(dot(h, h)) + radius);
+  const double solid_angle = kPi * radius * radius;  // ≥ 2π(1 − cos ρ), without its cancellation
+  return solid_angle * density / (4.0 * cos_half * cos_half * cos_half * cos_half * vn);
+}
+
 ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec3& view,
                                        const SurfaceFrame& f, SlopeVariance s,
                                        const BrdfOptions& options, double relative,
@@ -245,6 +267,9 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
   require_roughness(s);
   const ViewTerms v = view_terms(view, f, s, options.erfc);
   if (!(v.cos_theta > 0.0)) return {};
+  // Far from the glitter the whole disk reflects less than the tolerance.
+  const double bound = reflected_sun_bound(sun, radius, view, f, s);
+  if (bound <= absolute) return {0.0, bound, 0, true};
   const std::array<Vec3, 2> axes = sun_disk_axes(sun);  // (u, w); clang 15 cannot capture bindings
   const Vec3& u = axes[0];
   const Vec3& w = axes[1];

@@ -54,10 +54,20 @@ RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& frame,
                                     const Sky& sky, const BrdfOptions& options, double relative,
                                     const Vec3& absolute);
 // ∫_disk f(L, V) cos θ_L dω_L over the sun disk of angular radius ρ (the reflectance that,
-// times L_sun, is the reflected sun), to max(absolute, relative·|value|).
+// times L_sun, is the reflected sun), to max(absolute, relative·|value|). When
+// reflected_sun_bound is within `absolute` the disk is not integrated: the value is 0 and the
+// bound its error (far from the glitter, most of the sea).
 ScalarEstimate reflected_sun_reference(const Vec3& sun, double sun_radius, const Vec3& view,
                                        const SurfaceFrame& frame, SlopeVariance s,
                                        const BrdfOptions& options, double relative,
                                        double absolute);
+// An upper bound of that integral without integrating: with F ≤ 1 and Λ ≥ 0 in Bruneton's eq. 8,
+// f cos θ_L ≤ p(ζ)/(4 (h·N)⁴ (V·N)); over the disk the unnormalized half vector H = L + V moves
+// by |L − S| ≤ ρ from H_S = S + V, so the facet slope ζ = H_t/H_n moves by at most
+// Δ = ρ√(1 + |ζ_S|²)/(H_S·N − ρ), the Mahalanobis distance √q of ζ is at least √q_S − Δ/σ_min,
+// and h·N ≥ (H_S·N − ρ)/(|H_S| + ρ). Times πρ² ≥ the disk's solid angle 2π(1 − cos ρ). +∞ when
+// H_S·N ≤ ρ (no bound of this form); 0 when V is below the surface.
+double reflected_sun_bound(const Vec3& sun, double sun_radius, const Vec3& view,
+                           const SurfaceFrame& frame, SlopeVariance s);
 
 }  // namespace oceanref
