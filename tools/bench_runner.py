@@ -90,6 +90,13 @@ def summary(values):
     return {"median": statistics.median(values), "min": min(values), "max": max(values)}
 
 
+# The parallelism (CPU time / wall time) of the bench's last run: the 1-minute load average seen
+# before a run includes the bench's own previous runs (a 2-thread render keeps 2 cores busy), so
+# the load of other work is the load average minus that. None before the first run (the builds'
+# load is still in the average then).
+LAST_PARALLELISM = [None]
+
+
 def run_case(case, runs):
     """Runs every variant of case `runs` times, alternating; fills case['variants'][*]['runs']."""
     variants = case["variants"]
@@ -106,6 +113,9 @@ def run_case(case, runs):
             load = os.getloadavg()[0]
             record, stdout = run_once(v["argv"], work)
             record["load_average_1min_before"] = load
+            if LAST_PARALLELISM[0] is not None:
+                record["other_load_before"] = max(0.0, load - LAST_PARALLELISM[0])
+            LAST_PARALLELISM[0] = record["cpu_s"] / record["wall_s"] if record["wall_s"] > 0 else 0.0
             if v.get("parse"):
                 record.update(v["parse"](stdout))
             if i == 0:
@@ -299,15 +309,25 @@ def markdown(result):
                  f"Wall time of the whole process, median [min – max] of {result['settings']['runs']} runs, "
                  f"the commands of each row alternating run by run; ratio = current/baseline of the medians "
                  f"(CPU time: user + system of the process, all its threads).")
-    busiest = max([load["start"][0], load["end"][0]] +
-                  [r.get("load_average_1min_before", 0) for case in result["cases"]
-                   for v in case["variants"].values() for r in v["runs"]])
+    runs_ = [r for case in result["cases"] for v in case["variants"].values() for r in v["runs"]]
+    if any("other_load_before" in r for r in runs_):
+        # The load beyond the bench's own processes (see LAST_PARALLELISM).
+        busiest = max(r.get("other_load_before", 0.0) for r in runs_)
+        what = "1-minute load average beyond the bench's own processes"
+    else:  # a bench.json from before that field: the raw load average
+        busiest = max([load["start"][0], load["end"][0]] +
+                      [r.get("load_average_1min_before", 0) for r in runs_])
+        what = "1-minute load average"
     if busiest > 0.5 * m["cores"]:
         lines.append("")
-        lines.append(f"**The machine was busy** (1-minute load average up to {busiest:.1f} on "
+        lines.append(f"**The machine was busy** ({what} up to {busiest:.1f} on "
                      f"{m['cores']} cores, other work beside the bench): wall times, their ratios and the "
                      f"thread scaling are spoilt by it; the CPU-time ratios less so. Quote a run on an "
                      f"idle machine.")
+    else:
+        lines.append("")
+        lines.append(f"The machine was otherwise idle ({what}: at most {busiest:.1f} on "
+                     f"{m['cores']} cores).")
     lines.append("")
     lines.append("| case | baseline | current | current/baseline | CPU time current/baseline | goal |")
     lines.append("|---|---|---|---|---|---|")
