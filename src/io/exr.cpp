@@ -448,6 +448,19 @@ void check_header_sizes(const std::string& path) {
   }
 }
 
+// A single-part file, opened after the header checks (call inside the reader's try: a failure
+// becomes its read_error); `multi_part_hint` says where a multi-part file should go.
+std::unique_ptr<Imf::MultiPartInputFile> open_single_part(const std::string& path,
+                                                          const std::string& multi_part_hint) {
+  check_header_sizes(path);
+  auto file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
+  if (file->parts() != 1) {
+    throw std::runtime_error("it has " + std::to_string(file->parts()) + " parts; " +
+                             multi_part_hint);
+  }
+  return file;
+}
+
 void check_readable(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
@@ -526,14 +539,9 @@ ExrImage read_exr(const std::string& path, double max_bytes) {
   check_readable(path);
   limit_openexr_image_size();
   try {
-    check_header_sizes(path);
-    Imf::MultiPartInputFile file(path.c_str());
-    if (file.parts() != 1) {
-      throw std::runtime_error("it has " + std::to_string(file.parts()) +
-                               " parts; read multi-part files with read_exr_parts");
-    }
+    const auto file = open_single_part(path, "read multi-part files with read_exr_parts");
     std::vector<ExrPart> parts;
-    read_part(file, 0, parts, max_bytes);
+    read_part(*file, 0, parts, max_bytes);
     return std::move(parts.front().image);  // level 0 of a tiled file
   } catch (const std::exception& e) {
     throw read_error(path, e.what());
@@ -794,12 +802,8 @@ std::vector<std::vector<float>> read_exr_rows(const std::string& path,
   check_readable(path);
   limit_openexr_image_size();
   try {
-    check_header_sizes(path);
-    Imf::MultiPartInputFile file(path.c_str());
-    if (file.parts() != 1) {
-      throw std::runtime_error("it has " + std::to_string(file.parts()) +
-                               " parts; read_exr_rows reads single-part files");
-    }
+    const auto owned = open_single_part(path, "read_exr_rows reads single-part files");
+    Imf::MultiPartInputFile& file = *owned;
     const Imf::Header& header = file.header(0);
     if ((header.hasType() && header.type() != Imf::SCANLINEIMAGE) || header.hasTileDescription()) {
       throw std::runtime_error("read_exr_rows reads scanline files only (this one is " +
