@@ -168,15 +168,14 @@ void preview_row(const float* r, const float* g, const float* b, int width, cons
   }
 }
 
-// The render EXR without pixels: size, channel names, attributes; the two hashes as given.
-ExrImage render_exr_header(const Scene& scene, const RenderedImage& image, bool aov,
+// The render EXR without pixels: size, channel names (the channels of an empty image),
+// attributes; the two hashes as given.
+ExrImage render_exr_header(const Scene& scene, const SlopeVariance& unresolved, bool aov,
                            const std::string& pixel_hash, const std::string& radiance_hash) {
   ExrImage exr;
   exr.width = scene.image.width;
   exr.height = scene.image.height;
-  for (ExrChannel& c : render_channels(image, aov)) {
-    exr.channels.push_back({std::move(c.name), 1, {}});
-  }
+  exr.channels = render_channels(RenderedImage{}, aov);
   const ShadingSettings& shading = scene.shading;
   const bool reference = shading.accuracy == LightingAccuracy::reference;
   exr.attributes["oceanref.lighting_accuracy"] =
@@ -196,7 +195,7 @@ ExrImage render_exr_header(const Scene& scene, const RenderedImage& image, bool 
   exr.attributes["oceanref.pixel_sha256"] = pixel_hash;
   exr.attributes["oceanref.radiance_f64_sha256"] = radiance_hash;
   exr.attributes["oceanref.unresolved_slope_variance"] =
-      format_number(image.unresolved.upwind) + "," + format_number(image.unresolved.crosswind);
+      format_number(unresolved.upwind) + "," + format_number(unresolved.crosswind);
   return exr;
 }
 }  // namespace
@@ -338,7 +337,7 @@ RenderedScene scene_output(const Scene& scene, RenderedImage rendered, bool aov)
   const RenderReport report = tally_of(r.image).report();
   r.pixel_sha256 = report.pixel_sha256;
   r.radiance_f64_sha256 = report.radiance_f64_sha256;
-  r.exr = render_exr_header(scene, r.image, aov, r.pixel_sha256, r.radiance_f64_sha256);
+  r.exr = render_exr_header(scene, r.image.unresolved, aov, r.pixel_sha256, r.radiance_f64_sha256);
   r.exr.channels = render_channels(r.image, aov);
   return r;
 }
@@ -370,9 +369,11 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
            (band < height ? " in bands of " + std::to_string(band) + " rows" : std::string()));
   const RenderFrame frame = prepare_frame(p->job, p->unresolved);
   RenderTally tally;
-  // The hashes are known after the last band: written into the header then.
+  // The hashes are known after the last band: placeholders in the header until then.
   const std::string placeholder(64, '0');
-  std::unique_ptr<ExrRowWriter> writer;
+  ExrRowWriter writer(
+      exr_path, render_exr_header(p->scene, p->unresolved, options.aov, placeholder, placeholder),
+      {{"oceanref.pixel_sha256", 64}, {"oceanref.radiance_f64_sha256", 64}});
   for (int first = 0; first < height; first += band) {
     const int last = std::min(height, first + band);
     std::function<void(double)> progress;
@@ -382,22 +383,16 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
       };
     }
     const RenderedImage image = render_rows(frame, first, last, progress);
-    if (!writer) {
-      writer = std::make_unique<ExrRowWriter>(
-          exr_path, render_exr_header(p->scene, image, options.aov, placeholder, placeholder),
-          std::map<std::string, std::size_t>{{"oceanref.pixel_sha256", 64},
-                                             {"oceanref.radiance_f64_sha256", 64}});
-    }
     tally.add(image);
     std::vector<std::vector<float>> values;
     for (ExrChannel& c : render_channels(image, options.aov)) values.push_back(std::move(c.values));
-    writer->write_rows(values, last - first);
+    writer.write_rows(values, last - first);
   }
   const PreviewScale scale = preview_scale(tally, p->scene.image);
   RenderReport report = tally.report();
-  writer->set_deferred("oceanref.pixel_sha256", report.pixel_sha256);
-  writer->set_deferred("oceanref.radiance_f64_sha256", report.radiance_f64_sha256);
-  writer->finish();
+  writer.set_deferred("oceanref.pixel_sha256", report.pixel_sha256);
+  writer.set_deferred("oceanref.radiance_f64_sha256", report.radiance_f64_sha256);
+  writer.finish();
   if (png_path.empty()) return report;
   note(options.log, "writing " + png_path);
   const int width = p->scene.image.width;

@@ -129,6 +129,20 @@ class CheckedStream : public Imf::OStream {
   bool recorded_whole_ = true;
 };
 
+// Rethrows the exception being handled as the EXR writers do: path and write errors unchanged,
+// anything else (OpenEXR's exceptions) as a std::runtime_error naming the file.
+[[noreturn]] void rethrow_write_error(const std::string& path) {
+  try {
+    throw;
+  } catch (const OutputPathError&) {
+    throw;
+  } catch (const OutputWriteError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": cannot write the EXR file: " + e.what());
+  }
+}
+
 // Runs `write` on a stream into a new OutputFile for `path` and commits it; the error names
 // the file. `write` must have destroyed its OpenEXR writer (which finishes the file) on return.
 void write_through_stream(const std::string& path,
@@ -140,12 +154,8 @@ void write_through_stream(const std::string& path,
       write(stream);
     }
     file.commit();
-  } catch (const OutputPathError&) {
-    throw;
-  } catch (const OutputWriteError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": cannot write the EXR file: " + e.what());
+  } catch (...) {
+    rethrow_write_error(path);
   }
 }
 
@@ -567,20 +577,6 @@ std::vector<ExrPart> read_exr_parts(const std::string& path, double max_bytes) {
 namespace {
 // The bytes a deferred attribute holds until set_deferred gives its value.
 constexpr char kPlaceholder = '?';
-
-// Rethrows the exception being handled as the EXR writers do: path and write errors unchanged,
-// anything else (OpenEXR's exceptions) as a std::runtime_error naming the file.
-[[noreturn]] void rethrow_write_error(const std::string& path) {
-  try {
-    throw;
-  } catch (const OutputPathError&) {
-    throw;
-  } catch (const OutputWriteError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": cannot write the EXR file: " + e.what());
-  }
-}
 }  // namespace
 
 struct ExrRowWriter::State {

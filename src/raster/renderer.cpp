@@ -165,15 +165,6 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
   return fragments;
 }
 
-// The job's pixel rows [first, last), checked.
-std::pair<int, int> job_rows(const RenderJob& job) {
-  const int last = job.last_row < 0 ? job.camera.height : job.last_row;
-  OCEANREF_EXPECTS(0 <= job.first_row && job.first_row < last && last <= job.camera.height,
-                   "pixel rows [" + std::to_string(job.first_row) + ", " + std::to_string(last) +
-                       ") of a nonempty band inside the " + std::to_string(job.camera.height) +
-                       " rows of the image");
-  return {job.first_row, last};
-}
 }  // namespace
 
 SlopeVarianceBudget slope_budget(const RenderJob& job, const WaveSettings& waves) {
@@ -222,8 +213,8 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
 }
 
 RenderedImage render(const RenderJob& job, const SlopeVariance& unresolved, RenderTimes* times) {
-  const std::pair<int, int> rows = job_rows(job);
-  return render_rows(prepare_frame(job, unresolved, times), rows.first, rows.second, job.progress,
+  const int last_row = job.last_row < 0 ? job.camera.height : job.last_row;  // checked there
+  return render_rows(prepare_frame(job, unresolved, times), job.first_row, last_row, job.progress,
                      times);
 }
 
