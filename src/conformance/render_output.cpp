@@ -160,7 +160,7 @@ PreviewScale preview_scale(const RenderTally& t, const ImageSettings& s) {
 void preview_row(const float* r, const float* g, const float* b, int width, const PreviewScale& p,
                  const ImageSettings& s, std::vector<std::uint8_t>& out) {
   for (int x = 0; x < width; ++x) {
-    const Vec3 c{r[x], g[x], b[x]};
+    const Vec3 c{static_cast<double>(r[x]), static_cast<double>(g[x]), static_cast<double>(b[x])};
     const Vec3 mapped = reinhard(c, p.log_average, s.tone_key, p.white);
     for (const double v : mapped) {
       out.push_back(static_cast<std::uint8_t>(std::lround(255.0 * srgb_encode(v))));
