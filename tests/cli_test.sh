@@ -281,6 +281,16 @@ printf '{"waves": {}, "camera": {"position": [0, 1, 0], "look_at": [0, 1, 0]}}' 
 expect 2 'camera: camera: look_at equals position' render "$tmp/bad.json" -o "$tmp/x.exr"
 [ ! -e "$tmp/x.exr" ] || fail "a failed render left an output file"
 
+# The pixel integral's error (issue 20): summarised from 4 samples a pixel, absent at 1 spp.
+expect 0 '^pixel_error_p99_relative,[0-9]' render "$tmp/render.json" -o "$tmp/pe.exr" --spp 4 --threads 2
+checks=$((checks + 1))
+awk -F, '/^pixel_error_p50/ { p50 = $2 } /^pixel_error_p99/ { p99 = $2 } /^pixel_error_max/ { max = $2 }
+  END { exit !(p50 > 0 && p50 <= p99 && p99 <= max) }' "$tmp/out" ||
+  fail "render --spp 4: pixel error summary out of order: $(grep pixel_error "$tmp/out")"
+expect 0 '^pixel_sha256' render "$tmp/render.json" -o "$tmp/pe1.exr" --spp 1 --threads 2
+checks=$((checks + 1))
+grep -q '^pixel_error' "$tmp/out" && fail "render --spp 1 printed a pixel error it cannot estimate"
+
 # The preview's tone-mapping keys reach the PNG (and only the PNG: the pixel hash is the same).
 for key in 'tone_key": 0.5' 'tone_white": 3'; do
   sed "s/\"samples_per_pixel\": 4}/\"samples_per_pixel\": 4, \"${key}}/" "$tmp/render.json" >"$tmp/tone.json"
@@ -498,8 +508,8 @@ check_estimate() {
 peak=$(peak_bytes render "$tmp/memory.json" --threads 2 -o "$tmp/memory.exr")
 check_estimate render "$(sed -n 's/^memory_estimate_bytes,//p' "$tmp/peak.out")" "$peak"
 # A render streams its rows to the files in bands (issue 16): its memory is one band, whatever
-# the image's height. 2048 px wide at 1 spp with --aov (312 bytes a pixel) is 372 rows a band;
-# 512 and 2048 rows (2 and 6 bands, sky only so that it is quick) must peak alike and have the
+# the image's height. 2048 px wide at 1 spp with --aov (348 bytes a pixel, 40 a sample) is 337
+# rows a band; 512 and 2048 rows (2 and 7 bands, sky only so that it is quick) must peak alike and have the
 # same estimate. (Not under AddressSanitizer, whose quarantine keeps freed bands.)
 if [ -z "${OCEANREF_SANITIZED:-}" ]; then
   cat >"$tmp/tall.json" <<'EOF'
@@ -528,9 +538,9 @@ sed 's/"resolution": 128/"resolution": 256/' "$tmp/memory.json" >"$tmp/memory256
 estimate=$(sed -n 's/^oceanref: needs an estimated \([0-9.]*\) MiB.*/\1/p' "$tmp/err")
 peak=$(peak_bytes fields "$tmp/memory256.json" --threads 2 -o "$tmp/fields.exr")
 check_estimate fields "$(awk -v m="$estimate" 'BEGIN { print m * 1048576 }')" "$peak"
-expect 2 "^oceanref: needs an estimated 13[0-9](\.[0-9])? MiB of memory \(largest: sample fragments \(render.width x render.height x render.samples_per_pixel\) 80 MiB, pixel buffers \(render.width x render.height\) 28 MiB, wave grids \(waves.resolution, waves.low_resolution, waves.cascades\) 10 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
+expect 2 "^oceanref: needs an estimated 14[0-9](\.[0-9])? MiB of memory \(largest: sample fragments \(render.width x render.height x render.samples_per_pixel\) 80 MiB, pixel buffers \(render.width x render.height\) 40 MiB, wave grids \(waves.resolution, waves.low_resolution, waves.cascades\) 10 MiB\), over the limit of 128 MiB; raise it with --max-memory" render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M
 # The per-pixel layers of --aov (sun, sky, sea, foam, depth, normal, x0) are counted only when asked.
-expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers \(render.width x render.height\) 104 MiB," render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M --aov
+expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers \(render.width x render.height\) 116 MiB," render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M --aov
 [ -e "$tmp/refused.exr" ] && fail "a render refused for memory wrote its output"
 expect 2 "^oceanref: needs an estimated .* MiB of memory \(largest: wave grids \(waves.resolution, waves.low_resolution, waves.cascades\) .*over the limit of 16 MiB; raise it with --max-memory" fields "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 16M
 expect 2 "^oceanref: CANDIDATE: .*memory.exr: cannot read the EXR file: part 0: 1024 x 512 pixels of 3 channels need 6 MiB, over the 3.8 MiB left of the reading limit \(--max-memory\)" compare "$tmp/memory.exr" "$tmp/memory.exr" --max-memory 16M

@@ -92,6 +92,8 @@ TEST_CASE("render file: channels, attributes and the two hashes as docs/FILES.md
   CHECK(r.exr.attributes.at("oceanref.pixel_sha256") == r.pixel_sha256);
   CHECK(r.exr.attributes.at("oceanref.radiance_f64_sha256") == r.radiance_f64_sha256);
   CHECK(r.exr.attributes.at("oceanref.scene_sha256") == sha256_hex(scene.canonical));
+  CHECK(r.exr.attributes.at("oceanref.pixel_error") ==
+        pixel_error_attribute(report_of(r).pixel_error));
   CHECK(r.exr.matrices.count("worldToCamera") == 1);
   CHECK(r.exr.matrices.count("worldToNDC") == 1);
   // The golden suite's stored hashes for this scene.
@@ -114,10 +116,10 @@ TEST_CASE("render file: channels, attributes and the two hashes as docs/FILES.md
     std::set<std::string> names;
     for (const ExrChannel& c : a.exr.channels) names.insert(c.name);
     for (const char* n : {"sun.R", "sky.G", "sea.B", "foam.R", "normal.G", "x0.B", "depth",
-                          "coverage", "lighting_error.R"}) {
+                          "coverage", "lighting_error.R", "pixel_error.B"}) {
       CHECK(names.count(n) == 1);
     }
-    CHECK(a.exr.channels.size() == 3 + 6 * 3 + 2 + 3);
+    CHECK(a.exr.channels.size() == 3 + 6 * 3 + 2 + 3 + 3);
   }
 }
 

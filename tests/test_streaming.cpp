@@ -84,6 +84,10 @@ TEST_CASE("a render streamed in bands writes the bytes of the whole render") {
       CHECK(r.lighting_error.estimated == expected.lighting_error.estimated);
       CHECK(r.lighting_error.max_relative == expected.lighting_error.max_relative);
       CHECK(r.lighting_error.median_relative == expected.lighting_error.median_relative);
+      CHECK(r.pixel_error.estimated == expected.pixel_error.estimated);
+      CHECK(r.pixel_error.p50_relative == expected.pixel_error.p50_relative);
+      CHECK(r.pixel_error.p99_relative == expected.pixel_error.p99_relative);
+      CHECK(r.pixel_error.max_relative == expected.pixel_error.max_relative);
       CHECK(r.unconverged_samples == expected.unconverged_samples);
       CHECK(r.integrand_evaluations == expected.integrand_evaluations);
       CHECK(bytes_of(exr) == bytes_of(whole_exr));

@@ -154,6 +154,7 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
     d["normal"] = image_array(image.normal, w, h);
     d["x0"] = image_array(image.x0, w, h);
     d["lighting_error"] = image_array(image.lighting_error, w, h);
+    d["pixel_error"] = image_array(image.pixel_error, w, h);
     d["depth"] = scalar_image(image.depth, w, h);
     d["coverage"] = scalar_image(image.coverage, w, h);
   }

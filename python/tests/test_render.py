@@ -60,16 +60,20 @@ def test_spp_and_aov(tiny):
     assert not np.array_equal(b, a["radiance"])  # the setting reaches the image
     with pytest.raises(ValueError, match=r"^spp: must be a square number in \[1, 256\], got 3"):
         oceanref.render(tiny, spp=3)
+    # The pixel integral's error (issue 20): 0 from one sample, the samples' spread from four.
+    assert not a["pixel_error"].any()
+    b = oceanref.render(tiny, threads=2, spp=4, aov=True)
+    assert b["pixel_error"].shape == (24, 40, 3) and (b["pixel_error"] > 0).mean() > 0.5
 
 
 def test_max_memory_refuses_a_render_before_it_starts(tiny):
     big = dict(TINY, render={"width": 4096, "height": 4096, "samples_per_pixel": 4})
-    # 4096² pixels at 4 spp: about 3.6 GiB of buffers, over a 1 GiB limit, refused at once;
-    # with the layers (aov=True: 152 more bytes per pixel and 23 more EXR channels) about 7.4 GiB.
-    with pytest.raises(RuntimeError, match=r"needs an estimated 36[0-9]{2}(\.[0-9])? MiB .*"
+    # 4096² pixels at 4 spp: about 3.9 GiB of buffers, over a 1 GiB limit, refused at once;
+    # with the layers (aov=True: 152 more bytes per pixel and 26 more EXR channels) about 7.9 GiB.
+    with pytest.raises(RuntimeError, match=r"needs an estimated 40[0-9]{2}(\.[0-9])? MiB .*"
                                            r"over the limit of 1024 MiB; raise it with max_memory="):
         oceanref.render(big, max_memory=2**30)
-    with pytest.raises(RuntimeError, match=r"needs an estimated 75[0-9]{2}(\.[0-9])? MiB .*"
+    with pytest.raises(RuntimeError, match=r"needs an estimated 81[0-9]{2}(\.[0-9])? MiB .*"
                                            r"over the limit of 1024 MiB; raise it with max_memory="):
         oceanref.render(big, aov=True, max_memory=2**30)
     with pytest.raises(ValueError, match="max_memory"):

@@ -73,6 +73,12 @@ void print_report(std::ostream& out, const RenderReport& r, const Scene& scene,
     out << "lighting_error_max_relative," << format_number(e.max_relative) << '\n';
     out << "lighting_error_median_relative," << format_number(e.median_relative) << '\n';
   }
+  const PixelErrorSummary& pe = r.pixel_error;
+  if (pe.estimated) {
+    out << "pixel_error_p50_relative," << format_number(pe.p50_relative) << '\n';
+    out << "pixel_error_p99_relative," << format_number(pe.p99_relative) << '\n';
+    out << "pixel_error_max_relative," << format_number(pe.max_relative) << '\n';
+  }
   out << "unconverged_samples," << r.unconverged_samples << '\n';
   out << "integrand_evaluations," << r.integrand_evaluations << '\n';
   out << "memory_estimate_bytes," << format_number(render_memory_estimate(scene, options).total())
@@ -142,7 +148,8 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
       "sun.RGB, sky.RGB, sea.RGB, foam.RGB, lighting_error.RGB (the estimated absolute error of "
       "the lighting per channel; for shading.accuracy fast, |fast - reference| + the reference's "
-      "estimate, which costs a reference render)");
+      "estimate, which costs a reference render), pixel_error.RGB (the estimated absolute error "
+      "of each pixel as the pixel integral: the standard error of its samples' mean; 0 at 1 spp)");
   cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
   cmd->add_option("--tile", f->tile,
                   "I/N: render only tile I of N (pixel rows I*H/N to (I+1)*H/N - 1, 0 <= I < N "

@@ -46,48 +46,79 @@ std::vector<ExrChannel> render_channels(const RenderedImage& image, bool aov) {
   channels.push_back({"depth", 1, std::vector<float>(image.depth.begin(), image.depth.end())});
   channels.push_back(
       {"coverage", 1, std::vector<float>(image.coverage.begin(), image.coverage.end())});
-  for (ExrChannel& c : channels_of("lighting_error.", image.lighting_error)) {
-    channels.push_back(std::move(c));
+  for (const auto& [name, layer] : {std::pair{"lighting_error.", &image.lighting_error},
+                                    std::pair{"pixel_error.", &image.pixel_error}}) {
+    for (ExrChannel& c : channels_of(name, *layer)) channels.push_back(std::move(c));
   }
   return channels;
 }
 
-// The relative lighting errors counted by the top bits of their doubles (sign 0, exponent, 8
-// bits of mantissa: 2¹⁹ bins, monotonic in the value), for the median of a render in bands.
+// Relative errors counted by the top bits of their doubles (sign 0, exponent, 8 bits of
+// mantissa: 2¹⁹ bins, monotonic in the value), for quantiles of a render in bands.
 constexpr int kHistogramShift = 44;
-struct LightingErrorTally {
-  LightingErrorSummary summary;
+struct RelativeErrorHistogram {
+  double max = 0.0;
   std::uint64_t count = 0;
   std::vector<std::uint64_t> bins;
 
-  void add(const RenderedImage& image) {
+  // The error e of a value l, relative (+inf for e > 0 at l = 0).
+  void add(double e, double l) {
     if (bins.empty()) bins.assign(std::size_t{1} << (63 - kHistogramShift), 0);
+    const double a = std::fabs(l);
+    const double relative = a > 0.0 ? e / a : (e > 0.0 ? HUGE_VAL : 0.0);
+    max = std::fmax(max, relative);
+    ++bins[std::bit_cast<std::uint64_t>(relative) >> kHistogramShift];
+    ++count;
+  }
+  // The lower edge of the bin holding the value of rank ⌊q n⌋ (0-based), as sorted.
+  double quantile(double q) const {
+    const auto rank = static_cast<std::uint64_t>(q * static_cast<double>(count));
+    std::uint64_t below = 0;
+    for (std::size_t b = 0; b < bins.size(); ++b) {
+      below += bins[b];
+      if (below > rank)
+        return std::bit_cast<double>(static_cast<std::uint64_t>(b) << kHistogramShift);
+    }
+    return 0.0;
+  }
+};
+
+// The lighting error over the channels of the pixels that see the sea.
+struct LightingErrorTally {
+  bool estimated = false;
+  RelativeErrorHistogram histogram;
+
+  void add(const RenderedImage& image) {
     for (std::size_t i = 0; i < image.lighting_error.size(); ++i) {
       if (!(image.coverage[i] > 0.0)) continue;
       for (std::size_t c = 0; c < 3; ++c) {
         const double e = image.lighting_error[i][c];
-        if (e > 0.0) summary.estimated = true;
-        const double l = std::fabs(image.radiance[i][c]);
-        const double relative = l > 0.0 ? e / l : (e > 0.0 ? HUGE_VAL : 0.0);
-        summary.max_relative = std::fmax(summary.max_relative, relative);
-        ++bins[std::bit_cast<std::uint64_t>(relative) >> kHistogramShift];
-        ++count;
+        if (e > 0.0) estimated = true;
+        histogram.add(e, image.radiance[i][c]);
       }
     }
   }
   LightingErrorSummary result() const {
-    LightingErrorSummary r = summary;
-    if (!r.estimated) return {};
-    const std::uint64_t rank = count / 2;  // the value of rank ⌊n/2⌋ (0-based), as sorted
-    std::uint64_t below = 0;
-    for (std::size_t b = 0; b < bins.size(); ++b) {
-      below += bins[b];
-      if (below > rank) {
-        r.median_relative = std::bit_cast<double>(static_cast<std::uint64_t>(b) << kHistogramShift);
-        break;
-      }
+    if (!estimated) return {};
+    return {true, histogram.max, histogram.quantile(0.5)};
+  }
+};
+
+// The pixel integral's error over the channels of every pixel.
+struct PixelErrorTally {
+  int samples_per_pixel = 0;
+  RelativeErrorHistogram histogram;
+
+  void add(const RenderedImage& image) {
+    for (std::size_t i = 0; i < image.pixel_error.size(); ++i) {
+      for (std::size_t c = 0; c < 3; ++c)
+        histogram.add(image.pixel_error[i][c], image.radiance[i][c]);
     }
-    return r;
+  }
+  PixelErrorSummary result() const {
+    if (samples_per_pixel < 2) return {false, samples_per_pixel, 0.0, 0.0, 0.0};
+    return {true, samples_per_pixel, histogram.quantile(0.5), histogram.quantile(0.99),
+            histogram.max};
   }
 };
 
@@ -97,6 +128,7 @@ struct RenderTally {
   Sha256 pixels;    // R, G, B as float32 little-endian, row-major
   Sha256 radiance;  // the same as binary64
   LightingErrorTally lighting_error;
+  PixelErrorTally pixel_error;
   double log_luminance_sum = 0.0;  // Σ ln(δ + L_w) in pixel order (log_average_luminance)
   std::size_t pixel_count = 0;
   double max_luminance = -HUGE_VAL;
@@ -125,13 +157,15 @@ struct RenderTally {
     }
     pixel_count += band.radiance.size();
     lighting_error.add(band);
+    pixel_error.samples_per_pixel = band.samples_per_axis * band.samples_per_axis;
+    pixel_error.add(band);
     unconverged_samples += band.unconverged_samples;
     integrand_evaluations += band.integrand_evaluations;
   }
   // Once, after the last band.
   RenderReport report() {
-    return {pixels.hex_digest(), radiance.hex_digest(), lighting_error.result(),
-            unconverged_samples, integrand_evaluations};
+    return {pixels.hex_digest(),  radiance.hex_digest(), lighting_error.result(),
+            pixel_error.result(), unconverged_samples,   integrand_evaluations};
   }
 };
 
@@ -171,7 +205,8 @@ void preview_row(const float* r, const float* g, const float* b, int width, cons
 // The render EXR without pixels: size, channel names (the channels of an empty image),
 // attributes; the two hashes as given.
 ExrImage render_exr_header(const Scene& scene, const SlopeVariance& unresolved, bool aov,
-                           const std::string& pixel_hash, const std::string& radiance_hash) {
+                           const std::string& pixel_hash, const std::string& radiance_hash,
+                           const std::string& pixel_error) {
   ExrImage exr;
   exr.width = scene.image.width;
   exr.height = scene.image.height;
@@ -194,6 +229,7 @@ ExrImage render_exr_header(const Scene& scene, const SlopeVariance& unresolved, 
   exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
   exr.attributes["oceanref.pixel_sha256"] = pixel_hash;
   exr.attributes["oceanref.radiance_f64_sha256"] = radiance_hash;
+  exr.attributes["oceanref.pixel_error"] = pixel_error;
   exr.attributes["oceanref.unresolved_slope_variance"] =
       format_number(unresolved.upwind) + "," + format_number(unresolved.crosswind);
   return exr;
@@ -236,15 +272,15 @@ RenderedScene render_scene(const std::string& path, const RenderOutputOptions& o
 }
 
 namespace {
-// Bytes per pixel of the per-pixel buffers: radiance, the lighting error and coverage; with
+// Bytes per pixel of the per-pixel buffers: radiance, the lighting and pixel errors, coverage; with
 // --aov also the four terms, normal, x0 and depth (RenderJob::layers). And the EXR channels.
 double pixel_bytes(bool aov) {
-  return aov ? 8 * sizeof(Vec3) + 2 * sizeof(double) : 2 * sizeof(Vec3) + sizeof(double);
+  return aov ? 9 * sizeof(Vec3) + 2 * sizeof(double) : 3 * sizeof(Vec3) + sizeof(double);
 }
 double channel_count(bool aov) {
-  return aov ? 26 : 3;
+  return aov ? 29 : 3;
 }
-constexpr double kLightingHistogramBytes = double(std::size_t{1} << 19) * sizeof(std::uint64_t);
+constexpr double kHistogramBytes = double(std::size_t{1} << 19) * sizeof(std::uint64_t);
 
 int samples_per_axis_of(const Scene& scene, const RenderOutputOptions& options) {
   return options.samples_per_axis > 0 ? options.samples_per_axis : scene.image.samples_per_axis;
@@ -286,7 +322,7 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
        {"sample fragments (" + area + " x render.samples_per_pixel)", samples * sizeof(Fragment)},
        {"pixel buffers" + image, pixels * pixel_bytes(options.aov)},
        {"EXR channels" + image, pixels * channel_count(options.aov) * sizeof(float)},
-       {"lighting error histogram", kLightingHistogramBytes}}};
+       {"error histograms (lighting, pixel)", 2 * kHistogramBytes}}};
 }
 
 namespace {
@@ -337,7 +373,8 @@ RenderedScene scene_output(const Scene& scene, RenderedImage rendered, bool aov)
   const RenderReport report = tally_of(r.image).report();
   r.pixel_sha256 = report.pixel_sha256;
   r.radiance_f64_sha256 = report.radiance_f64_sha256;
-  r.exr = render_exr_header(scene, r.image.unresolved, aov, r.pixel_sha256, r.radiance_f64_sha256);
+  r.exr = render_exr_header(scene, r.image.unresolved, aov, r.pixel_sha256, r.radiance_f64_sha256,
+                            pixel_error_attribute(report.pixel_error));
   r.exr.channels = render_channels(r.image, aov);
   return r;
 }
@@ -347,6 +384,7 @@ RenderReport report_of(const RenderedScene& rendered) {
   r.pixel_sha256 = rendered.pixel_sha256;
   r.radiance_f64_sha256 = rendered.radiance_f64_sha256;
   r.lighting_error = summarize_lighting_error(rendered.image);
+  r.pixel_error = tally_of(rendered.image).pixel_error.result();
   r.unconverged_samples = rendered.image.unconverged_samples;
   r.integrand_evaluations = rendered.image.integrand_evaluations;
   return r;
@@ -371,9 +409,12 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
   RenderTally tally;
   // The hashes are known after the last band: placeholders in the header until then.
   const std::string placeholder(64, '0');
-  ExrRowWriter writer(
-      exr_path, render_exr_header(p->scene, p->unresolved, options.aov, placeholder, placeholder),
-      {{"oceanref.pixel_sha256", 64}, {"oceanref.radiance_f64_sha256", 64}});
+  ExrRowWriter writer(exr_path,
+                      render_exr_header(p->scene, p->unresolved, options.aov, placeholder,
+                                        placeholder, std::string(kPixelErrorAttributeLength, ' ')),
+                      {{"oceanref.pixel_sha256", 64},
+                       {"oceanref.radiance_f64_sha256", 64},
+                       {"oceanref.pixel_error", kPixelErrorAttributeLength}});
   for (int first = 0; first < height; first += band) {
     const int last = std::min(height, first + band);
     std::function<void(double)> progress;
@@ -392,6 +433,7 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
   RenderReport report = tally.report();
   writer.set_deferred("oceanref.pixel_sha256", report.pixel_sha256);
   writer.set_deferred("oceanref.radiance_f64_sha256", report.radiance_f64_sha256);
+  writer.set_deferred("oceanref.pixel_error", pixel_error_attribute(report.pixel_error));
   writer.finish();
   if (png_path.empty()) return report;
   note(options.log, "writing " + png_path);
@@ -412,6 +454,18 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
   }
   png.finish();
   return report;
+}
+
+std::string pixel_error_attribute(const PixelErrorSummary& e) {
+  std::string text =
+      e.estimated
+          ? "standard error of the pixel mean over " + std::to_string(e.samples_per_pixel) +
+                " samples, relative to the radiance: p50 " + format_number(e.p50_relative) +
+                ", p99 " + format_number(e.p99_relative) + ", max " + format_number(e.max_relative)
+          : std::string("not estimated: 1 sample per pixel");
+  OCEANREF_EXPECTS(text.size() <= kPixelErrorAttributeLength, "the pixel error summary fits");
+  text.resize(kPixelErrorAttributeLength, ' ');
+  return text;
 }
 
 LightingErrorSummary summarize_lighting_error(const RenderedImage& image) {

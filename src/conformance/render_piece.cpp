@@ -18,7 +18,7 @@
 namespace oceanref {
 
 namespace {
-constexpr const char* kMagic = "oceanref render piece 1\n";
+constexpr const char* kMagic = "oceanref render piece 2\n";
 constexpr std::size_t kMaxHeaderBytes = 1 << 16;
 
 // The buffers of a piece in file order: f(member) for each (a vector of Vec3 or of double), the
@@ -27,6 +27,7 @@ template <class F>
 void for_each_buffer(bool layers, const F& f) {
   f(&RenderedImage::radiance);
   f(&RenderedImage::lighting_error);
+  f(&RenderedImage::pixel_error);
   f(&RenderedImage::coverage);
   if (!layers) return;
   f(&RenderedImage::sun);
@@ -149,7 +150,8 @@ RenderPiece read_render_piece(const std::string& path) {
     piece.layers = h["layers"].get<bool>();
     piece.tiles = static_cast<int>(integer("tiles", 1, kMaxExrSide));
     piece.tile = static_cast<int>(integer("tile", 0, piece.tiles - 1));
-    piece.samples_per_axis = static_cast<int>(integer("samples_per_axis", 1, 16));
+    piece.samples_per_axis = static_cast<int>(integer("samples_per_axis", 1, kMaxSamplesPerAxis));
+    b.samples_per_axis = piece.samples_per_axis;
     b.width = static_cast<int>(integer("width", 1, kMaxExrSide));
     b.first_row = static_cast<int>(integer("first_row", 0, kMaxExrSide - 1));
     b.height = static_cast<int>(integer("rows", 1, kMaxExrSide - b.first_row));
@@ -248,6 +250,7 @@ RenderedImage merge_render_pieces(const Scene& scene, const std::vector<RenderPi
   image.height = height;
   image.unresolved = first.band.unresolved;
   image.displacement_bound = first.band.displacement_bound;
+  image.samples_per_axis = first.samples_per_axis;
   for (const int i : order) {
     const RenderedImage& band = pieces[static_cast<std::size_t>(i)].band;
     image.unconverged_samples += band.unconverged_samples;

@@ -1,6 +1,7 @@
 #include "raster/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -167,6 +168,18 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
 
 }  // namespace
 
+Vec3 pixel_standard_error(std::span<const Vec3> samples, const Vec3& mean) {
+  Vec3 error{};
+  if (samples.size() < 2) return error;
+  const double n = static_cast<double>(samples.size());
+  for (std::size_t c = 0; c < 3; ++c) {
+    double squares = 0.0;
+    for (const Vec3& x : samples) squares += (x[c] - mean[c]) * (x[c] - mean[c]);
+    error[c] = std::sqrt(squares / (n * (n - 1.0)));
+  }
+  return error;
+}
+
 SlopeVarianceBudget slope_budget(const RenderJob& job, const WaveSettings& waves) {
   const ReferenceFpEnvironment fp;
   return slope_variance_budget(*job.ocean, waves.minimum_wavelength, job.time,
@@ -196,8 +209,9 @@ class StageClock {
 
 RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
                           RenderTimes* times) {
-  OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
-                   "a render job names its ocean and has >= 1 sample per axis");
+  OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1 &&
+                       job.samples_per_axis <= kMaxSamplesPerAxis,
+                   "a render job names its ocean and has 1 to 16 samples per axis");
   const ReferenceFpEnvironment fp;
   StageClock clock(times);
   RenderFrame frame;
@@ -235,6 +249,7 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
   image.width = job.camera.width;
   image.height = last_row - first_row;
   image.first_row = first_row;
+  image.samples_per_axis = job.samples_per_axis;
   image.unresolved = unresolved;
   image.displacement_bound = frame.displacement_bound;
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
@@ -249,6 +264,7 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
   image.radiance = pixel_buffer("radiance");
   image.coverage = allocate_buffer<double>(pixels, "the per-pixel coverage buffer");
   image.lighting_error = pixel_buffer("lighting error");
+  image.pixel_error = pixel_buffer("pixel error");
   const bool layers = job.layers;
   if (layers) {
     image.sun = pixel_buffer("sun");
@@ -272,6 +288,8 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
           static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
           static_cast<std::size_t>(x);
       int hits = 0;
+      std::array<Vec3, kMaxSamplesPerAxis * kMaxSamplesPerAxis> samples;
+      std::size_t sample = 0;
       for (int b = 0; b < s; ++b) {
         for (int a = 0; a < s; ++a) {
           const int band_row = y * s + b;
@@ -283,6 +301,7 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
           const glm::dvec3 ray =
               ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
           const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
+          samples[sample++] = p.radiance;
           for (std::size_t c = 0; c < 3; ++c) {
             image.radiance[pixel][c] += per_sample * p.radiance[c];
             image.lighting_error[pixel][c] += per_sample * p.lighting_error[c];
@@ -306,6 +325,8 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
         }
       }
       image.coverage[pixel] = hits * per_sample;
+      image.pixel_error[pixel] =
+          pixel_standard_error(std::span(samples.data(), sample), image.radiance[pixel]);
       if (layers && hits > 0) {
         image.depth[pixel] /= hits;
         for (std::size_t c = 0; c < 3; ++c) {
@@ -392,8 +413,9 @@ void require_finite(const RenderedImage& image) {
 
 std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& unresolved,
                                      int pixel_x, int pixel_y) {
-  OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1,
-                   "a render job names its ocean and has >= 1 sample per axis");
+  OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1 &&
+                       job.samples_per_axis <= kMaxSamplesPerAxis,
+                   "a render job names its ocean and has 1 to 16 samples per axis");
   OCEANREF_EXPECTS(
       0 <= pixel_x && pixel_x < job.camera.width && 0 <= pixel_y && pixel_y < job.camera.height,
       "pixel (" + std::to_string(pixel_x) + ", " + std::to_string(pixel_y) + ") inside the " +

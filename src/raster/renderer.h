@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -19,6 +20,9 @@
 
 namespace oceanref {
 
+// The largest S of S×S samples per pixel (256 spp, the scene's and --spp's range).
+inline constexpr int kMaxSamplesPerAxis = 16;
+
 struct RenderJob {
   const Ocean* ocean = nullptr;
   double time = 0.0;
@@ -26,7 +30,7 @@ struct RenderJob {
   ProjectedGridSettings grid;  // columns, rows, margin (the bound is filled in)
   Sky sky;
   ShadingSettings shading;
-  int samples_per_axis = 2;  // S: S×S stratified samples per pixel
+  int samples_per_axis = 2;  // S: S×S stratified samples per pixel, 1…kMaxSamplesPerAxis
   int threads = 1;
   // The pixel rows rendered, [first_row, last_row) of the camera's image (last_row −1: to the
   // bottom): a band of the image, each pixel the same bits as in the whole image (tiles,
@@ -51,6 +55,7 @@ struct RenderedImage {
   int width = 0;
   int height = 0;              // rows held (the job's band)
   int first_row = 0;           // the image row of row 0 (0 unless the job rendered a band)
+  int samples_per_axis = 1;    // S of the S×S samples behind each pixel
   std::vector<Vec3> radiance;  // cd/m², linear sRGB
   std::vector<Vec3> sun, sky, sea, foam;  // the terms (AOVs), 0 where the sea is not seen
   std::vector<double> depth;              // mean view depth of the sea samples [m], 0 if none
@@ -60,11 +65,23 @@ struct RenderedImage {
   // Estimated absolute error of `radiance` from the lighting integrals, per channel (0 where
   // not estimated: fast accuracy without estimate_fast_error).
   std::vector<Vec3> lighting_error;
+  // Estimated absolute error of `radiance` as the pixel integral (the box filter over the
+  // pixel), per channel: the standard error of the mean of the pixel's S² samples
+  // (pixel_standard_error); 0 with one sample per pixel, where nothing estimates it.
+  std::vector<Vec3> pixel_error;
   long unconverged_samples = 0;  // samples whose reference integrals missed the tolerance
   long integrand_evaluations = 0;
   SlopeVariance unresolved;  // the BRDF roughness used
   double displacement_bound = 0.0;
 };
+
+// The standard error of the mean of a pixel's samples, per channel:
+// √(Σᵢ (xᵢ − mean)² / (n (n − 1))), summed in sample order; 0 for n < 2. The samples are those of
+// the S×S stratified grid, treated as independent draws: where a sub-pixel feature (a sun
+// glint, the horizon) is hit by some samples and missed by others it is the error's size;
+// where the radiance is smooth across the pixel it overestimates the error of the stratified
+// mean (which falls faster than n^{-1/2}).
+Vec3 pixel_standard_error(std::span<const Vec3> samples, const Vec3& mean);
 
 // The slope variance budget of the job's frame (waves/slope_budget.h): the spectrum's mean
 // square slope per wind axis up to λ_min, split into what the shaded slope field carries (its
