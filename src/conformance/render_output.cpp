@@ -110,6 +110,7 @@ struct PixelErrorTally {
   RelativeErrorHistogram histogram;
 
   void add(const RenderedImage& image) {
+    samples_per_pixel = image.samples_per_axis * image.samples_per_axis;
     for (std::size_t i = 0; i < image.pixel_error.size(); ++i) {
       for (std::size_t c = 0; c < 3; ++c)
         histogram.add(image.pixel_error[i][c], image.radiance[i][c]);
@@ -157,7 +158,6 @@ struct RenderTally {
     }
     pixel_count += band.radiance.size();
     lighting_error.add(band);
-    pixel_error.samples_per_pixel = band.samples_per_axis * band.samples_per_axis;
     pixel_error.add(band);
     unconverged_samples += band.unconverged_samples;
     integrand_evaluations += band.integrand_evaluations;
@@ -384,7 +384,7 @@ RenderReport report_of(const RenderedScene& rendered) {
   r.pixel_sha256 = rendered.pixel_sha256;
   r.radiance_f64_sha256 = rendered.radiance_f64_sha256;
   r.lighting_error = summarize_lighting_error(rendered.image);
-  r.pixel_error = tally_of(rendered.image).pixel_error.result();
+  r.pixel_error = summarize_pixel_error(rendered.image);
   r.unconverged_samples = rendered.image.unconverged_samples;
   r.integrand_evaluations = rendered.image.integrand_evaluations;
   return r;
@@ -466,6 +466,12 @@ std::string pixel_error_attribute(const PixelErrorSummary& e) {
   OCEANREF_EXPECTS(text.size() <= kPixelErrorAttributeLength, "the pixel error summary fits");
   text.resize(kPixelErrorAttributeLength, ' ');
   return text;
+}
+
+PixelErrorSummary summarize_pixel_error(const RenderedImage& image) {
+  PixelErrorTally t;
+  t.add(image);
+  return t.result();
 }
 
 LightingErrorSummary summarize_lighting_error(const RenderedImage& image) {

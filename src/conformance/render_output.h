@@ -111,6 +111,8 @@ struct PixelErrorSummary {
 // kPixelErrorAttributeLength bytes (a streamed render writes it after its last band).
 inline constexpr std::size_t kPixelErrorAttributeLength = 160;
 std::string pixel_error_attribute(const PixelErrorSummary& e);
+// The summary of one image (as a render in bands accumulates it).
+PixelErrorSummary summarize_pixel_error(const RenderedImage& image);
 
 // What `render` and `merge` print for an image (cli print_report).
 struct RenderReport {

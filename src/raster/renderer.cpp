@@ -211,7 +211,8 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
                           RenderTimes* times) {
   OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1 &&
                        job.samples_per_axis <= kMaxSamplesPerAxis,
-                   "a render job names its ocean and has 1 to 16 samples per axis");
+                   "a render job names its ocean and has 1 to " +
+                       std::to_string(kMaxSamplesPerAxis) + " samples per axis");
   const ReferenceFpEnvironment fp;
   StageClock clock(times);
   RenderFrame frame;
@@ -415,7 +416,8 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
                                      int pixel_x, int pixel_y) {
   OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1 &&
                        job.samples_per_axis <= kMaxSamplesPerAxis,
-                   "a render job names its ocean and has 1 to 16 samples per axis");
+                   "a render job names its ocean and has 1 to " +
+                       std::to_string(kMaxSamplesPerAxis) + " samples per axis");
   OCEANREF_EXPECTS(
       0 <= pixel_x && pixel_x < job.camera.width && 0 <= pixel_y && pixel_y < job.camera.height,
       "pixel (" + std::to_string(pixel_x) + ", " + std::to_string(pixel_y) + ") inside the " +
