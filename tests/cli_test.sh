@@ -291,6 +291,43 @@ expect 0 '^pixel_sha256' render "$tmp/render.json" -o "$tmp/pe1.exr" --spp 1 --t
 checks=$((checks + 1))
 grep -q '^pixel_error' "$tmp/out" && fail "render --spp 1 printed a pixel error it cannot estimate"
 
+# Adaptive sampling (render.pixel_tolerance): the samples behind the pixels and the capped ones
+# reported; a cap below what the tolerance needs warns on stderr; the samples layer with --aov.
+sed 's/"samples_per_pixel": 4}/"samples_per_pixel": 4, "pixel_tolerance": 0.001, "max_samples_per_pixel": 36}/' \
+  "$tmp/render.json" >"$tmp/adaptive.json"
+expect 0 '^capped_pixels,[1-9]' render "$tmp/adaptive.json" -o "$tmp/adaptive.exr" --aov --threads 2
+grep -q '^pixel_samples_max,36$' "$tmp/out" || fail "adaptive render: pixel_samples_max is not 36"
+awk -F, '/^pixel_samples_mean/ { exit !($2 > 4 && $2 <= 36) }' "$tmp/out" ||
+  fail "adaptive render: pixel_samples_mean outside (4, 36]: $(cat "$tmp/out")"
+grep -q 'pixels reached render.max_samples_per_pixel above render.pixel_tolerance' "$tmp/err" ||
+  fail "adaptive render: no warning for the capped pixels: $(cat "$tmp/err")"
+checks=$((checks + 1))
+/usr/bin/python3 - "$tmp/adaptive.exr" <<'PY' || fail "adaptive render: no samples layer of 4 and 36"
+import sys, OpenImageIO as oiio
+spec = oiio.ImageInput.open(sys.argv[1]).spec()
+sys.exit(0 if "samples" in spec.channelnames else 1)
+PY
+# Converged comparison: the golden's pixel_error (+ lighting_error) joins the tolerance. A 4-spp
+# candidate fails more pixels against the adaptive golden without it than with it; a golden
+# without the layer is refused.
+"$bin" render "$tmp/render.json" -o "$tmp/cand4.exr" --threads 2 >/dev/null
+"$bin" compare "$tmp/cand4.exr" "$tmp/adaptive.exr" --rel 1e-3 --channels R,G,B >"$tmp/plain.out"
+"$bin" compare "$tmp/cand4.exr" "$tmp/adaptive.exr" --rel 1e-3 --channels R,G,B --converged \
+  >"$tmp/out"
+checks=$((checks + 1))
+share() { sed -n 's/.*failing pixels \([0-9.e+-]*\)%.*/\1/p' "$1" | head -1; }
+awk -v a="$(share "$tmp/plain.out")" -v b="$(share "$tmp/out")" 'BEGIN { exit !(b < a) }' ||
+  fail "compare --converged did not lower the failing share: $(share "$tmp/plain.out") -> $(share "$tmp/out")"
+grep -q '+pixel_error.R' "$tmp/out" || fail "compare --converged does not show the golden's error layers"
+expect 2 'needs the golden.s pixel_error.[RGB]' compare "$tmp/cand4.exr" "$tmp/cand4.exr" --converged
+sed 's/"max_samples_per_pixel": 36/"max_samples_per_pixel": 100/' "$tmp/adaptive.json" >"$tmp/bad.json"
+expect 2 'render.max_samples_per_pixel.*one of 36, 324' render "$tmp/bad.json" -o "$tmp/x.exr"
+# Fast lighting: its error is estimated (a reference render as well) only with --lighting-error.
+expect 0 '^pixel_sha256' render "$tmp/render.json" -o "$tmp/le.exr" --threads 2
+grep -q '^lighting_error' "$tmp/out" && fail "a fast render estimated its lighting error unasked"
+expect 0 '^lighting_error_median_relative,[0-9]' render "$tmp/render.json" -o "$tmp/le.exr" \
+  --lighting-error --threads 2
+
 # The preview's tone-mapping keys reach the PNG (and only the PNG: the pixel hash is the same).
 for key in 'tone_key": 0.5' 'tone_white": 3'; do
   sed "s/\"samples_per_pixel\": 4}/\"samples_per_pixel\": 4, \"${key}}/" "$tmp/render.json" >"$tmp/tone.json"
@@ -420,7 +457,7 @@ grep -q '^integral,mode,setting,cases,median_relative_error' "$tmp/map.csv" ||
 head -c 4 "$tmp/map.svg" | grep -q '<svg' || fail "bench lighting-map --svg is not an SVG"
 expect 2 '--threads' bench lighting-map --quick --threads 0
 expect 2 'not expected' bench lighting-map --bogus
-"$bin" render "$tmp/render.json" -o "$tmp/aov.exr" --aov --spp 1 >/dev/null
+"$bin" render "$tmp/render.json" -o "$tmp/aov.exr" --aov --lighting-error --spp 1 >/dev/null
 expect 0 '^sea_pixels,pixels,median,p95,max,layer_median,layer_p95,layer_max$' \
   bench lighting-pixels "$tmp/aov.exr" "$tmp/aov.exr"
 # Against itself: no difference, and the layer (|fast - reference| + estimate) is not 0.
@@ -454,7 +491,7 @@ grep -q $'\x1b' "$tmp/err" && fail "an escape byte of a scene value reached stde
 # own conversions ("Could not convert") say the range too.
 expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\] \(0: all cores\), got 'abc'" render "$tmp/scene.json" -o "$tmp/strict.exr" --threads abc
 expect 2 "^oceanref: --threads: must be in \[0, 1024\] \(0: all cores\), got '99999999999999999999'" render "$tmp/scene.json" -o "$tmp/strict.exr" --threads 99999999999999999999
-expect 2 "^oceanref: --spp: expected an integer in \[1, 256\] \(a square number\), got '4x'" render "$tmp/scene.json" -o "$tmp/strict.exr" --spp 4x
+expect 2 "^oceanref: --spp: expected an integer in \[1, 1024\] \(a square number\), got '4x'" render "$tmp/scene.json" -o "$tmp/strict.exr" --spp 4x
 expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\]" fields "$tmp/scene.json" --at 0,0 --threads 1.5
 expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\]" probe "$tmp/scene.json" --pixel 0,0 --threads x
 expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\]" golden verify --threads x

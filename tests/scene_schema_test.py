@@ -44,6 +44,7 @@ BASE = {"seed": 1, "waves": {"resolution": 8, "cascades": {"sizes": [50]}},
 CONTEXT = {
     "shading.sky_order": {"shading.accuracy": "fast"},
     "shading.sun_order": {"shading.accuracy": "fast"},
+    "render.max_samples_per_pixel": {"render.pixel_tolerance": 0.01},
     "waves.choppiness": {"waves.allow_positive_choppiness": True},
     "waves.spectrum.peak_omega": {"waves.spectrum.allow_extrapolation": True},
     "waves.spectrum.alpha": {"waves.spectrum.allow_extrapolation": True},

@@ -484,3 +484,43 @@ TEST_CASE("SSIM: a profile's min_ssim fails a part below it; parse errors name t
                        doctest::Contains("min_ssim: must be a number in [-1, 1]"),
                        std::invalid_argument);
 }
+
+TEST_CASE("compare --converged: the golden's pixel_error + lighting_error join the tolerance") {
+  // Golden R = 4 in each pixel, its estimated errors 0.25 (pixel) + 0.125 (lighting) in pixel
+  // 0 and 0 elsewhere; `depth` has no error layer and gets no allowance.
+  const ExrPart g = part({{"R", 1, {4.0f, 4.0f}},
+                          {"depth", 1, {10.0f, 10.0f}},
+                          {"pixel_error.R", 1, {0.25f, 0.0f}},
+                          {"lighting_error.R", 1, {0.125f, 0.0f}}},
+                         2, 1);
+  ExrPart c = part({{"R", 1, {4.375f, 4.0f}}, {"depth", 1, {10.0f, 10.0f}}}, 2, 1);
+  ThresholdProfile profile = uniform_profile({});
+  CHECK_FALSE(compare_parts({g}, {c}, {}, profile).pass);
+  profile.golden_error = true;
+  const Comparison within = compare_parts({g}, {c}, {}, profile);
+  CHECK(within.pass);  // 0.375 = 0.25 + 0.125
+  REQUIRE(within.parts[0].channels.size() == 2);
+  CHECK(within.parts[0].channels[0].golden_error_channels ==
+        std::vector<std::string>{"pixel_error.R", "lighting_error.R"});
+  CHECK(within.parts[0].channels[1].golden_error_channels.empty());
+  c.image.channels[0].values[0] = 4.376f;  // just over the golden's bound
+  CHECK_FALSE(compare_parts({g}, {c}, {}, profile).pass);
+  c.image.channels[0].values[0] = 4.0f;
+  c.image.channels[0].values[1] = 4.001f;  // the second pixel's golden is exact: no allowance
+  CHECK_FALSE(compare_parts({g}, {c}, {}, profile).pass);
+  c.image.channels[1].values[1] = 10.5f;  // depth: never an allowance
+  c.image.channels[0].values[1] = 4.0f;
+  CHECK_FALSE(compare_parts({g}, {c}, {}, profile).pass);
+  // Without the golden's pixel_error the comparison is refused, naming the layer.
+  const ExrPart bare = part({{"R", 1, {4.0f, 4.0f}}, {"depth", 1, {10.0f, 10.0f}}}, 2, 1);
+  try {
+    compare_parts({bare}, {c}, {}, profile);
+    FAIL("a converged comparison without the golden's pixel_error was accepted");
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()).find("pixel_error.R") != std::string::npos);
+  }
+  // The profile key.
+  CHECK(parse_profile(R"({"default": {"rel": 0}, "golden_error": true})", "p").golden_error);
+  CHECK_THROWS_AS(parse_profile(R"({"default": {"rel": 0}, "golden_error": 1})", "p"),
+                  std::invalid_argument);
+}

@@ -164,6 +164,7 @@ void enable_key(json& scene, const std::string& path) {
   if (path == "shading.tolerance") {
     scene["shading"] = {{"accuracy", "reference"}};
   }
+  if (path == "render.max_samples_per_pixel") scene["render"]["pixel_tolerance"] = 0.5;
 }
 
 void set_value(json& scene, const Range& r, double v) {

@@ -107,6 +107,15 @@ TEST_CASE("scene: every bad value is rejected with its JSON path") {
   s["render"] = json::parse(R"({"samples_per_pixel": 3})");
   CHECK(error_path(s) == "render.samples_per_pixel");
   s = minimal();
+  s["render"] = json::parse(R"({"pixel_tolerance": 0})");
+  CHECK(error_path(s) == "render.pixel_tolerance");
+  s = minimal();
+  s["render"] = json::parse(R"({"max_samples_per_pixel": 36})");  // without pixel_tolerance
+  CHECK(error_path(s) == "render.max_samples_per_pixel");
+  s = minimal();
+  s["render"] = json::parse(R"({"pixel_tolerance": 0.01, "max_samples_per_pixel": 81})");
+  CHECK(error_path(s) == "render.max_samples_per_pixel");  // 4 spp: 36, 324, 2916, 26244
+  s = minimal();
   s["shading"] = json::parse(R"({"interpolation": "cubic"})");
   CHECK(error_path(s) == "shading.interpolation");
   s = minimal();

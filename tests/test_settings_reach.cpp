@@ -144,6 +144,9 @@ std::vector<Row> reach_rows() {
       changes("render.width", 10, kPixels),
       changes("render.height", 6, kPixels),
       changes("render.samples_per_pixel", 4, kPixels),
+      changes("render.pixel_tolerance", 0.05, kPixels),
+      changes("render.max_samples_per_pixel", 9, kPixels,
+              ctx(R"({"render": {"pixel_tolerance": 1e-3}})")),
       {"render.tone_key", 0.3, json::object(), Effect::preview},
       {"render.tone_white", 2.0, json::object(), Effect::preview},
   };

@@ -136,19 +136,23 @@ def fields_sha256(values):
     return _hash_fields(values, "<f4"), _hash_fields(values, "<f8")
 
 
-def render(scene, threads=0, spp=None, aov=False, max_memory=8 * 2**30):
+def render(scene, threads=0, spp=None, aov=False, lighting_error=False, max_memory=8 * 2**30):
     """The reference image of a scene: float64 array (height, width, 3) of linear radiance
     [cd/m² per linear sRGB channel, D65], the values behind ``oceanref render -o``'s R, G, B
     (equal bit for bit after float32 rounding; pixel_sha256 gives the EXR's hash).
 
-    spp: samples per pixel, a square number in [1, 256] (default: the scene's). threads: 0 =
+    spp: samples per pixel, a square number in [1, 1024] (default: the scene's). threads: 0 =
     every core; the image is identical for any count. With aov=True returns a dict: radiance,
-    sun, sky, sea, foam, normal, x0, lighting_error (H, W, 3), depth [m], coverage (H, W),
-    unconverged_samples, integrand_evaluations, unresolved_slope_variance (upwind, crosswind).
-    max_memory: bytes; a render whose estimated buffers need more raises RuntimeError (as
-    ``oceanref render --max-memory``).
+    sun, sky, sea, foam, normal, x0, lighting_error, pixel_error (H, W, 3), depth [m], coverage
+    (H, W), unconverged_samples, integrand_evaluations, unresolved_slope_variance (upwind,
+    crosswind), and with adaptive sampling (render.pixel_tolerance) pixel_samples (H, W) and
+    capped_pixels. lighting_error=True: for shading.accuracy "fast", also the reference
+    lighting of every sample, so that lighting_error is the fast mode's error (as ``oceanref
+    render --lighting-error``; costs a reference render). max_memory: bytes; a render whose
+    estimated buffers need more raises RuntimeError (as ``oceanref render --max-memory``).
     """
-    result = _core._render(_scene(scene), threads, spp, aov, float(max_memory))
+    result = _core._render(_scene(scene), threads, spp, aov, bool(lighting_error),
+                           float(max_memory))
     return result if aov else result["radiance"]
 
 
@@ -300,7 +304,7 @@ def _parts(key, image):
 
 
 def compare(candidate, golden, profile=None, rel=0.0, abs=0.0, floor=0.0, ulp=0,  # noqa: A002
-            max_fail_share=0.0, channels=None):
+            max_fail_share=0.0, channels=None, converged=False):
     """Compares a candidate with a golden image by the rule of ``oceanref compare`` (README,
     conformance/compare.h): per value, pass if |c − g| ≤ abs + rel·max(|g|, floor·RMS(g)) or
     within ``ulp`` float32 ULPs; a channel passes if at most ``max_fail_share`` of its values
@@ -309,10 +313,13 @@ def compare(candidate, golden, profile=None, rel=0.0, abs=0.0, floor=0.0, ulp=0,
     candidate, golden: EXR paths, arrays (H, W) → channel Y, (H, W, 3) → R, G, B, (H, W, 4) →
     R, G, B, A (compared as float32), or dicts {channel: 2-D array}. profile: a profile file
     (reference/profiles/*.json) instead of the uniform thresholds. channels: "R,G,B" or
-    "cand=golden,…". Returns a CompareResult (truthy when it passes)."""
+    "cand=golden,…". converged: add the golden's own error (its pixel_error and
+    lighting_error layers) to the tolerance of R, G, B, as ``oceanref compare --converged``.
+    Returns a CompareResult (truthy when it passes)."""
     d = _core._compare(_parts("candidate", candidate), _parts("golden", golden),
                        None if profile is None else _os.fspath(profile), float(abs), float(rel),
                        float(floor), int(ulp), float(max_fail_share), channels or "",
+                       bool(converged),
                        candidate if isinstance(candidate, str) else "<array>",
                        golden if isinstance(golden, str) else "<array>")
     return CompareResult(d)

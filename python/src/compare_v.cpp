@@ -90,6 +90,7 @@ py::dict result_dict(const Comparison& c, const std::string& golden, const std::
       ch["failing"] = r.failing;
       ch["failing_share"] = r.failing_share;
       ch["nonfinite_mismatches"] = r.nonfinite_mismatches;
+      ch["golden_error_channels"] = r.golden_error_channels;
       channels.append(ch);
     }
     part["channels"] = channels;
@@ -107,7 +108,7 @@ void bind_compare(py::module_& m) {
       "_compare",
       [](const py::object& candidate, const py::object& golden, const py::object& profile,
          double abs, double rel, double floor, long long ulp, double share,
-         const std::string& channels, const std::string& candidate_name,
+         const std::string& channels, bool converged, const std::string& candidate_name,
          const std::string& golden_name) {
         const auto load = [](const std::string& key, const py::object& source) {
           if (py::isinstance<py::str>(source)) {
@@ -142,6 +143,7 @@ void bind_compare(py::module_& m) {
             throw ArgumentError("profile", e.what());
           }
         }
+        if (converged) p.golden_error = true;
         ChannelSelection selection;
         if (!channels.empty()) {
           try {
@@ -160,7 +162,7 @@ void bind_compare(py::module_& m) {
       },
       py::arg("candidate"), py::arg("golden"), py::arg("profile"), py::arg("abs"), py::arg("rel"),
       py::arg("floor"), py::arg("ulp"), py::arg("max_fail_share"), py::arg("channels"),
-      py::arg("candidate_name"), py::arg("golden_name"));
+      py::arg("converged"), py::arg("candidate_name"), py::arg("golden_name"));
 }
 
 }  // namespace oceanref::python

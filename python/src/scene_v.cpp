@@ -109,14 +109,15 @@ py::array_t<double> scalar_image(const std::vector<double>& v, int width, int he
 }
 
 py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp, bool aov,
-                      double max_memory) {
+                      bool lighting_error, double max_memory) {
   const int threads = resolve_threads(threads_arg);
   Scene scene = s.scene;
   if (spp) {
     const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(*spp))));
-    if (*spp < 1 || *spp > 256 || axis * axis != *spp) {
-      throw ArgumentError("spp",
-                          "must be a square number in [1, 256], got " + std::to_string(*spp));
+    if (*spp < 1 || *spp > kMaxSamplesPerAxis * kMaxSamplesPerAxis || axis * axis != *spp) {
+      throw ArgumentError("spp", "must be a square number in [1, " +
+                                     std::to_string(kMaxSamplesPerAxis * kMaxSamplesPerAxis) +
+                                     "], got " + std::to_string(*spp));
     }
     scene.image.samples_per_axis = axis;
   }
@@ -133,7 +134,7 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
     py::gil_scoped_release release;
     const Ocean ocean = realize_ocean(scene.waves, threads);
     RenderJob job = scene_render_job(scene, ocean, threads);
-    job.estimate_fast_error = aov;  // as `oceanref render --aov`
+    job.estimate_fast_error = lighting_error;  // as `oceanref render --lighting-error`
     job.layers = aov;
     const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
     image = render(job, unresolved);
@@ -144,6 +145,10 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
   d["radiance"] = image_array(image.radiance, w, h);
   d["unconverged_samples"] = image.unconverged_samples;
   d["integrand_evaluations"] = image.integrand_evaluations;
+  if (!image.pixel_samples.empty()) {
+    d["pixel_samples"] = scalar_image(image.pixel_samples, w, h);
+    d["capped_pixels"] = image.capped_pixels;
+  }
   d["unresolved_slope_variance"] =
       py::make_tuple(image.unresolved.upwind, image.unresolved.crosswind);
   if (aov) {
@@ -241,7 +246,7 @@ void bind_scene(py::module_& m) {
       },
       py::arg("scene"), py::arg("time") = py::none(), py::arg("threads") = 0);
   m.def("_render", &render_scene, py::arg("scene"), py::arg("threads") = 0,
-        py::arg("spp") = py::none(), py::arg("aov") = false,
+        py::arg("spp") = py::none(), py::arg("aov") = false, py::arg("lighting_error") = false,
         py::arg("max_memory") = kDefaultMaxMemory);
   m.def("_read_exr", &read_exr_file, py::arg("path"));
 }

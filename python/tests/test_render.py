@@ -58,12 +58,23 @@ def test_spp_and_aov(tiny):
     np.testing.assert_allclose(total[sea], a["radiance"][sea], rtol=1e-12, atol=0)
     b = oceanref.render(tiny, threads=2, spp=4)
     assert not np.array_equal(b, a["radiance"])  # the setting reaches the image
-    with pytest.raises(ValueError, match=r"^spp: must be a square number in \[1, 256\], got 3"):
+    with pytest.raises(ValueError, match=r"^spp: must be a square number in \[1, 1024\], got 3"):
         oceanref.render(tiny, spp=3)
     # The pixel integral's error (issue 20): 0 from one sample, the samples' spread from four.
     assert not a["pixel_error"].any()
     b = oceanref.render(tiny, threads=2, spp=4, aov=True)
     assert b["pixel_error"].shape == (24, 40, 3) and (b["pixel_error"] > 0).mean() > 0.5
+    assert "pixel_samples" not in b
+    # Adaptive sampling: the samples behind each pixel (one refinement at least from 1 spp).
+    adaptive = dict(TINY, render=dict(TINY["render"], pixel_tolerance=0.05,
+                                      max_samples_per_pixel=81))
+    c = oceanref.render(adaptive, threads=2, aov=True)
+    assert set(np.unique(c["pixel_samples"])) <= {9.0, 81.0} and (c["pixel_samples"] == 9).any()
+    assert c["capped_pixels"] <= (c["pixel_samples"] == 81).sum()
+    # The fast lighting error is estimated only when asked.
+    assert not a["lighting_error"].any()
+    d = oceanref.render(tiny, threads=2, aov=True, lighting_error=True)
+    assert (d["lighting_error"] > 0).any()
 
 
 def test_max_memory_refuses_a_render_before_it_starts(tiny):

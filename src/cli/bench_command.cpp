@@ -88,7 +88,8 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       "sea pixels (coverage > 0): |fast - reference|/|reference| (largest channel per pixel) "
       "and the same from the fast render's lighting_error layer; CSV of median, 95th "
       "percentile and largest.");
-  lighting_pixels->add_option("FAST_AOV", pixel_flags->fast, "fast render written with --aov")
+  lighting_pixels
+      ->add_option("FAST_AOV", pixel_flags->fast, "fast render written with --aov --lighting-error")
       ->required()
       ->check(CLI::ExistingFile);
   lighting_pixels->add_option("REFERENCE", pixel_flags->reference, "reference render (.exr)")

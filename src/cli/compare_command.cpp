@@ -74,7 +74,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
     std::vector<std::string> files;
     std::string report, profile, channels, json, format = "text", list, output, name, max_memory;
     ChannelThreshold threshold;
-    bool alpha = false, suggest = false;
+    bool alpha = false, suggest = false, converged = false;
     double safety = 4.0;
     double min_ssim = 0.0;
   };
@@ -129,6 +129,11 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
                   "R/r/red/rgba.R, G, B, A, Y/luminance); default: every candidate channel but "
                   "alpha, matched by name or alias");
   cmd->add_flag("--alpha", f->alpha, "also compare alpha channels (ignored by default)");
+  cmd->add_flag("--converged", f->converged,
+                "converged mode: add the golden's own estimated error of each R, G, B value "
+                "(its pixel_error and lighting_error layers, from render --aov) to the "
+                "tolerance, so a candidate with other sample positions is judged against the "
+                "pixel integral (README, \"Converged pixels\")");
   cmd->add_option("--json", f->json,
                   "FILE: the full result as JSON (percentiles, histogram, worst)");
   cmd->add_option("--format", f->format, "stdout: text (a table) or json")
@@ -173,9 +178,11 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
     }
     selection.include_alpha = f->alpha;
     if (f->suggest) {
-      if (!f->report.empty() || !f->profile.empty() || !f->json.empty() || min_ssim->count() > 0) {
+      if (!f->report.empty() || !f->profile.empty() || !f->json.empty() || min_ssim->count() > 0 ||
+          f->converged) {
         throw UsageError("--suggest",
-                         "cannot be combined with --report, --profile, --json or --min-ssim");
+                         "cannot be combined with --report, --profile, --json, "
+                         "--min-ssim or --converged");
       }
       std::vector<std::pair<std::string, std::string>> runs;
       // The golden is the last file, as in compare CANDIDATE GOLDEN.
@@ -238,6 +245,7 @@ std::function<void(std::ostream&)> add_compare_command(CLI::App& app) {
         throw UsageError("--profile", e.what());
       }
     }
+    if (f->converged) profile.golden_error = true;
     const std::vector<ExrPart> candidate = read_parts("CANDIDATE", f->files[0], max_memory);
     const std::vector<ExrPart> golden = read_parts("GOLDEN", f->files[1], max_memory);
     Comparison c;

@@ -24,12 +24,14 @@
 namespace oceanref::cli {
 
 namespace {
-// --spp: a square number in [1, 256]; its square root (0 when not given).
+// --spp: a square number in [1, kMaxSamplesPerAxis²]; its square root (0 when not given).
 int samples_per_axis(int spp) {
   if (spp == 0) return 0;
   const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
-  if (spp < 1 || spp > 256 || axis * axis != spp) {
-    throw UsageError("--spp", "must be a square number in [1, 256], got " + std::to_string(spp));
+  if (spp < 1 || spp > kMaxSamplesPerAxis * kMaxSamplesPerAxis || axis * axis != spp) {
+    throw UsageError("--spp", "must be a square number in [1, " +
+                                  std::to_string(kMaxSamplesPerAxis * kMaxSamplesPerAxis) +
+                                  "], got " + std::to_string(spp));
   }
   return axis;
 }
@@ -79,14 +81,25 @@ void print_report(std::ostream& out, const RenderReport& r, const Scene& scene,
     out << "pixel_error_p99_relative," << format_number(pe.p99_relative) << '\n';
     out << "pixel_error_max_relative," << format_number(pe.max_relative) << '\n';
   }
+  if (pe.adaptive) {
+    out << "pixel_samples_mean," << format_number(pe.mean_samples) << '\n';
+    out << "pixel_samples_max," << format_number(pe.max_samples) << '\n';
+    out << "capped_pixels," << pe.capped_pixels << '\n';
+  }
   out << "unconverged_samples," << r.unconverged_samples << '\n';
   out << "integrand_evaluations," << r.integrand_evaluations << '\n';
   out << "memory_estimate_bytes," << format_number(render_memory_estimate(scene, options).total())
       << '\n';
   if (r.unconverged_samples > 0) {
-    progress("oceanref", "warning: " + std::to_string(r.unconverged_samples) +
-                             " samples missed the lighting tolerance (their error estimates "
-                             "are in --aov lighting_error)");
+    warn("oceanref", std::to_string(r.unconverged_samples) +
+                         " samples missed the lighting tolerance (their error estimates "
+                         "are in --aov lighting_error)");
+  }
+  if (pe.capped_pixels > 0) {
+    warn("oceanref", std::to_string(pe.capped_pixels) +
+                         " pixels reached render.max_samples_per_pixel above "
+                         "render.pixel_tolerance (their error estimates are in --aov "
+                         "pixel_error, their samples in --aov samples)");
   }
 }
 
@@ -130,6 +143,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     int threads = 0;
     int spp = 0;
     bool aov = false;
+    bool lighting_error = false;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
@@ -142,14 +156,19 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   cmd->add_option("--threads", f->threads, "worker threads (default: all cores)")
       ->check(integer_in(0, 1024, " (0: all cores)"));
   cmd->add_option("--spp", f->spp, "samples per pixel, a square number (overrides the scene)")
-      ->check(integer_in(1, 256, " (a square number)"));
+      ->check(integer_in(1, kMaxSamplesPerAxis * kMaxSamplesPerAxis, " (a square number)"));
   cmd->add_flag(
       "--aov", f->aov,
       "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
       "sun.RGB, sky.RGB, sea.RGB, foam.RGB, lighting_error.RGB (the estimated absolute error of "
-      "the lighting per channel; for shading.accuracy fast, |fast - reference| + the reference's "
-      "estimate, which costs a reference render), pixel_error.RGB (the estimated absolute error "
-      "of each pixel as the pixel integral: the standard error of its samples' mean; 0 at 1 spp)");
+      "the lighting per channel; 0 for shading.accuracy fast without --lighting-error), "
+      "pixel_error.RGB (the estimated absolute error of each pixel as the pixel integral: 3 "
+      "standard errors of its samples' mean; 0 at 1 spp) and, with render.pixel_tolerance, "
+      "samples (the samples behind each pixel)");
+  cmd->add_flag("--lighting-error", f->lighting_error,
+                "shading.accuracy fast: also compute the reference lighting of every sample, so "
+                "that the report and lighting_error give the fast mode's error (|fast - "
+                "reference| + the reference's estimate; costs a reference render)");
   cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
   cmd->add_option("--tile", f->tile,
                   "I/N: render only tile I of N (pixel rows I*H/N to (I+1)*H/N - 1, 0 <= I < N "
@@ -171,6 +190,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     }
     options.samples_per_axis = samples_per_axis(f->spp);
     options.aov = f->aov;
+    options.fast_lighting_error = f->lighting_error;
     options.log = log_progress;
     if (isatty(STDERR_FILENO)) options.progress = progress_bar();
     if (!f->tile.empty()) {
@@ -180,6 +200,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       out << "tile," << piece.tile << '/' << piece.tiles << '\n';
       out << "rows," << piece.band.first_row << ',' << piece.band.first_row + piece.band.height
           << '\n';
+      if (piece.adaptive) out << "capped_pixels," << piece.band.capped_pixels << '\n';
       out << "unconverged_samples," << piece.band.unconverged_samples << '\n';
       out << "integrand_evaluations," << piece.band.integrand_evaluations << '\n';
       return;

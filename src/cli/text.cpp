@@ -162,4 +162,8 @@ void progress(std::string_view who, const std::string& message) {
   if (isatty(STDERR_FILENO)) std::cerr << who << ": " << message << '\n';
 }
 
+void warn(std::string_view who, const std::string& message) {
+  std::cerr << who << ": warning: " << message << '\n';
+}
+
 }  // namespace oceanref::cli

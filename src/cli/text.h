@@ -32,6 +32,8 @@ struct CheckFailed {};
 int resolve_threads(int requested);
 // "<who>: <message>" on stderr, only when it is a terminal (pipes and CI logs stay clean).
 void progress(std::string_view who, const std::string& message);
+// A warning on stderr, "WHO: warning: MESSAGE", whether or not stderr is a terminal.
+void warn(std::string_view who, const std::string& message);
 
 // The whole text must be one finite number ("inf" accepted when allow_infinity). The message of a
 // bad value quotes it escaped (escape_value) and, when `range` is given, states the accepted range

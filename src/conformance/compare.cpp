@@ -80,8 +80,9 @@ bool both_same_nonfinite(float g, float c) {
   return std::isinf(g) && std::isinf(c) && std::signbit(g) == std::signbit(c);
 }
 
+// `allowance` (empty, or one value per value of g): added to each value's tolerance.
 ChannelResult compare_channel(const ExrChannel& g, const ExrChannel& c, int part_width,
-                              const ChannelThreshold& t) {
+                              const ChannelThreshold& t, const std::vector<double>& allowance) {
   ChannelResult r;
   r.golden_name = g.name;
   r.candidate_name = c.name;
@@ -130,7 +131,8 @@ ChannelResult compare_channel(const ExrChannel& g, const ExrChannel& c, int part
       e = a == 0.0 ? 0.0 : (scale > 0.0 ? a / scale : kInf);
       const long long u = ulp_distance(gv, cv);
       r.max_ulp = std::max(r.max_ulp, u);
-      fail = !(a <= t.absolute + t.relative * scale) && u > t.ulp;
+      const double extra = allowance.empty() ? 0.0 : allowance[i];
+      fail = !(a <= t.absolute + t.relative * scale + extra) && u > t.ulp;
       error_squares += a * a;
       ++error_count;
     }
@@ -290,9 +292,9 @@ ThresholdProfile parse_profile(const std::string& json_text, const std::string& 
     throw std::invalid_argument(source + ": not valid JSON: " + e.what());
   }
   if (!j.is_object()) throw std::invalid_argument(source + ": a profile is a JSON object");
-  static const std::set<std::string> known_top{"name",     "stage",      "description",
-                                               "rule",     "derivation", "default",
-                                               "channels", "comment",    "min_ssim"};
+  static const std::set<std::string> known_top{
+      "name",    "stage",    "description", "rule",     "derivation",
+      "default", "channels", "comment",     "min_ssim", "golden_error"};
   static const std::set<std::string> known_rule{"part",
                                                 "match",
                                                 "abs",
@@ -346,6 +348,12 @@ ThresholdProfile parse_profile(const std::string& json_text, const std::string& 
       throw std::invalid_argument(source + ": min_ssim: must be a number in [-1, 1]");
     }
     p.min_ssim = v.get<double>();
+  }
+  if (j.contains("golden_error")) {
+    if (!j.at("golden_error").is_boolean()) {
+      throw std::invalid_argument(source + ": golden_error: must be true or false");
+    }
+    p.golden_error = j.at("golden_error").get<bool>();
   }
   if (p.rules.empty() && !p.has_fallback) {
     throw std::invalid_argument(source + ": a profile needs \"default\" or \"channels\"");
@@ -546,6 +554,41 @@ SsimResult part_ssim(const std::vector<std::pair<const ExrChannel*, const ExrCha
 }
 }  // namespace
 
+namespace {
+// Converged mode: the golden's estimated error of each value of its channel `g` (R, G or B, by
+// alias): pixel_error.C (required) + lighting_error.C (when present); nothing for other
+// channels. `used` receives the channels' names.
+std::vector<double> golden_error_allowance(const ExrPart& golden, const ExrChannel& g,
+                                           std::vector<std::string>& used) {
+  const std::string alias = channel_alias(g.name);
+  if (alias != "r" && alias != "g" && alias != "b") return {};
+  const std::string suffix(1, static_cast<char>(alias[0] - 'a' + 'A'));
+  std::vector<double> allowance(g.values.size(), 0.0);
+  for (const std::string layer : {"pixel_error.", "lighting_error."}) {
+    const std::string name = layer + suffix;
+    const auto found =
+        std::find_if(golden.image.channels.begin(), golden.image.channels.end(),
+                     [&](const ExrChannel& c) { return c.name == name && c.sampling == 1; });
+    if (found == golden.image.channels.end()) {
+      if (layer == "lighting_error.") continue;
+      throw std::invalid_argument(part_label(golden) + ": a converged comparison (--converged) " +
+                                  "needs the golden's " + name + " (render the golden with --aov)");
+    }
+    for (std::size_t i = 0; i < allowance.size(); ++i) {
+      const double e = static_cast<double>(found->values[i]);
+      if (!(e >= 0.0 && std::isfinite(e))) {
+        throw std::invalid_argument(part_label(golden) + ": the golden's " + name +
+                                    " holds a value that is not a finite error (" +
+                                    short_number(e) + ")");
+      }
+      allowance[i] += e;
+    }
+    used.push_back(name);
+  }
+  return allowance;
+}
+}  // namespace
+
 PartResult compare_part(const ExrPart& golden, const ExrPart& candidate,
                         const ChannelSelection& selection, const ThresholdProfile& profile) {
   const ExrImage& g = golden.image;
@@ -627,8 +670,13 @@ PartResult compare_part(const ExrPart& golden, const ExrPart& candidate,
   const auto pixels = static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height);
   std::vector<char> failing(pixels, 0);
   for (const auto& [gc, cc] : pairs) {
-    ChannelResult r =
-        compare_channel(*gc, *cc, g.width, threshold_for(profile, golden.name, gc->name));
+    std::vector<std::string> error_channels;
+    const std::vector<double> allowance = profile.golden_error
+                                              ? golden_error_allowance(golden, *gc, error_channels)
+                                              : std::vector<double>{};
+    ChannelResult r = compare_channel(*gc, *cc, g.width,
+                                      threshold_for(profile, golden.name, gc->name), allowance);
+    r.golden_error_channels = std::move(error_channels);
     if (r.sampling == 1) {
       for (std::size_t i = 0; i < pixels && i < r.fails.size(); ++i) {
         failing[i] = static_cast<char>(failing[i] | r.fails[i]);
@@ -809,6 +857,7 @@ std::string comparison_json(const Comparison& c, const std::string& golden_path,
                         {"sampling", r.sampling},
                         {"result", r.pass ? "pass" : "fail"},
                         {"threshold", threshold_json(r.threshold)},
+                        {"golden_error_channels", r.golden_error_channels},
                         {"golden_rms", r.golden_rms},
                         {"values", r.values},
                         {"failing", r.failing},
@@ -883,6 +932,7 @@ std::string comparison_text(const Comparison& c) {
           << " F=" << short_number(r.threshold.floor);
       if (r.threshold.ulp > 0) out << " U=" << r.threshold.ulp;
       if (r.threshold.allowed_share > 0) out << " S=" << short_number(r.threshold.allowed_share);
+      for (const std::string& e : r.golden_error_channels) out << " +" << e;
       if (!r.worst.empty()) {
         out << "   " << r.worst[0].x << "," << r.worst[0].y << " (g "
             << short_number(static_cast<double>(r.worst[0].golden)) << ", c "

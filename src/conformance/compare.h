@@ -9,6 +9,12 @@
 //   relative error e = |c − g| / s      (0 when c = g; +inf when s = 0 and c ≠ g)
 //   the value passes if both are finite and |c − g| ≤ tolerance, or if its float32 ULP distance
 //   is ≤ U (`ulp`); a channel passes if at most a share S (`allowed_share`) of its values fail.
+// Converged mode (`golden_error`: `compare --converged`, a profile's "golden_error": true): the
+// golden's own estimated error of the value is added to the tolerance of R, G and B —
+//   tolerance = A + R·s + E_pixel + E_lighting
+// from the golden's layers pixel_error.C and lighting_error.C (`render --aov`; pixel_error is
+// required, lighting_error used when present): the golden is then the pixel integral with its
+// bound, not one set of sample positions (README "Converged pixels").
 // Non-finite values: a NaN matches only a NaN, +Inf only +Inf, −Inf only −Inf. Any other pair
 // with a non-finite member (NaN vs number, ±Inf vs number, +Inf vs −Inf, NaN vs Inf, either
 // way) is a non-finite mismatch: it fails the value and the whole comparison, whatever S is.
@@ -48,6 +54,7 @@ struct ThresholdProfile {
   // The lowest SSIM (see below) a part with an SSIM may have; with it set, a comparison where no
   // part has one is refused, and a part whose SSIM cannot be computed fails.
   std::optional<double> min_ssim;
+  bool golden_error = false;  // converged mode (above)
 };
 bool glob_match(const std::string& pattern, const std::string& text);
 // Throws std::invalid_argument naming the part and channel when nothing covers them.
@@ -55,8 +62,8 @@ ChannelThreshold threshold_for(const ThresholdProfile& profile, const std::strin
                                const std::string& channel);
 // A profile file (JSON, reference/profiles/*.json): {"name", "default": {abs, rel, floor, ulp,
 // max_fail_share}, "channels": [{"part", "match", abs, rel, floor, ulp, max_fail_share}, ...],
-// "min_ssim"} plus free documentation keys. Throws std::invalid_argument naming the file and the
-// key.
+// "min_ssim", "golden_error"} plus free documentation keys. Throws std::invalid_argument naming the
+// file and the key.
 ThresholdProfile parse_profile(const std::string& json_text, const std::string& source);
 ThresholdProfile read_profile(const std::string& path);
 
@@ -101,6 +108,8 @@ struct ChannelResult {
   int sampling = 1;
   int width = 0, height = 0;  // of the channel's grid
   ChannelThreshold threshold;
+  // Converged mode: the golden channels whose values were added to the tolerance (else empty).
+  std::vector<std::string> golden_error_channels;
   double golden_rms = 0.0;
   double max_absolute = 0.0, max_relative = 0.0, rmse = 0.0;
   double psnr = 0.0;  // 20 log10(max |g| / RMSE) [dB]; +inf when identical

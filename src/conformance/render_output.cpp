@@ -18,6 +18,10 @@
 namespace oceanref {
 
 namespace {
+bool adaptive(const Scene& scene) {
+  return scene.image.pixel_tolerance > 0.0;
+}
+
 std::vector<ExrChannel> channels_of(const std::string& prefix, const std::vector<Vec3>& v) {
   std::vector<ExrChannel> out;
   for (std::size_t c = 0; c < 3; ++c) {
@@ -33,8 +37,8 @@ void note(const std::function<void(const std::string&)>& log, const std::string&
 }
 
 // The channels of the render EXR for the rows of `image` (the whole image or a band), in the
-// file's order: R, G, B, then with AOVs the layers.
-std::vector<ExrChannel> render_channels(const RenderedImage& image, bool aov) {
+// file's order: R, G, B, then with AOVs the layers (and `samples` when adaptive).
+std::vector<ExrChannel> render_channels(const RenderedImage& image, bool aov, bool adaptive) {
   std::vector<ExrChannel> channels = channels_of("", image.radiance);
   if (!aov) return channels;
   for (const auto& [name, layer] :
@@ -49,6 +53,10 @@ std::vector<ExrChannel> render_channels(const RenderedImage& image, bool aov) {
   for (const auto& [name, layer] : {std::pair{"lighting_error.", &image.lighting_error},
                                     std::pair{"pixel_error.", &image.pixel_error}}) {
     for (ExrChannel& c : channels_of(name, *layer)) channels.push_back(std::move(c));
+  }
+  if (adaptive) {
+    channels.push_back(
+        {"samples", 1, std::vector<float>(image.pixel_samples.begin(), image.pixel_samples.end())});
   }
   return channels;
 }
@@ -104,22 +112,45 @@ struct LightingErrorTally {
   }
 };
 
-// The pixel integral's error over the channels of every pixel.
+// The pixel integral's error over the channels of every pixel, and the samples behind them.
 struct PixelErrorTally {
   int samples_per_pixel = 0;
+  bool adaptive = false;
+  double samples = 0.0;  // Σ samples per pixel (adaptive; exact below 2⁵³)
+  double most_samples = 0.0;
+  long pixels = 0;
+  long capped_pixels = 0;
   RelativeErrorHistogram histogram;
 
   void add(const RenderedImage& image) {
     samples_per_pixel = image.samples_per_axis * image.samples_per_axis;
+    adaptive = !image.pixel_samples.empty();
+    for (const double n : image.pixel_samples) {
+      samples += n;
+      most_samples = std::fmax(most_samples, n);
+    }
+    pixels += static_cast<long>(image.radiance.size());
+    capped_pixels += image.capped_pixels;
     for (std::size_t i = 0; i < image.pixel_error.size(); ++i) {
       for (std::size_t c = 0; c < 3; ++c)
         histogram.add(image.pixel_error[i][c], image.radiance[i][c]);
     }
   }
   PixelErrorSummary result() const {
-    if (samples_per_pixel < 2) return {false, samples_per_pixel, 0.0, 0.0, 0.0};
-    return {true, samples_per_pixel, histogram.quantile(0.5), histogram.quantile(0.99),
-            histogram.max};
+    PixelErrorSummary s;
+    s.samples_per_pixel = samples_per_pixel;
+    if (adaptive) {
+      s.adaptive = true;
+      s.mean_samples = samples / static_cast<double>(std::max(pixels, 1L));
+      s.max_samples = most_samples;
+      s.capped_pixels = capped_pixels;
+    }
+    if (samples_per_pixel < 2 && !adaptive) return s;
+    s.estimated = true;
+    s.p50_relative = histogram.quantile(0.5);
+    s.p99_relative = histogram.quantile(0.99);
+    s.max_relative = histogram.max;
+    return s;
   }
 };
 
@@ -210,7 +241,7 @@ ExrImage render_exr_header(const Scene& scene, const SlopeVariance& unresolved, 
   ExrImage exr;
   exr.width = scene.image.width;
   exr.height = scene.image.height;
-  exr.channels = render_channels(RenderedImage{}, aov);
+  exr.channels = render_channels(RenderedImage{}, aov, adaptive(scene));
   const ShadingSettings& shading = scene.shading;
   const bool reference = shading.accuracy == LightingAccuracy::reference;
   exr.attributes["oceanref.lighting_accuracy"] =
@@ -273,14 +304,31 @@ RenderedScene render_scene(const std::string& path, const RenderOutputOptions& o
 
 namespace {
 // Bytes per pixel of the per-pixel buffers: radiance, the lighting and pixel errors, coverage; with
-// --aov also the four terms, normal, x0 and depth (RenderJob::layers). And the EXR channels.
-double pixel_bytes(bool aov) {
-  return aov ? 9 * sizeof(Vec3) + 2 * sizeof(double) : 3 * sizeof(Vec3) + sizeof(double);
+// --aov also the four terms, normal, x0 and depth (RenderJob::layers); adaptive sampling's sample
+// counts. And the EXR channels.
+double pixel_bytes(bool aov, bool adaptive) {
+  const std::size_t bytes =
+      (aov ? 9 * sizeof(Vec3) + 2 * sizeof(double) : 3 * sizeof(Vec3) + sizeof(double)) +
+      (adaptive ? sizeof(double) : 0);
+  return static_cast<double>(bytes);
 }
-double channel_count(bool aov) {
-  return aov ? 29 : 3;
+double channel_count(bool aov, bool adaptive) {
+  return aov ? (adaptive ? 30 : 29) : 3;
 }
 constexpr double kHistogramBytes = double(std::size_t{1} << 19) * sizeof(std::uint64_t);
+
+// "4 spp", or with adaptive sampling "4 spp refined to 1% up to 324".
+std::string sampling_text(const RenderJob& job) {
+  const int s = job.samples_per_axis;
+  std::string text = std::to_string(s * s) + " spp";
+  if (job.pixel_tolerance > 0.0) {
+    int n = s;
+    for (int r = 0; r < job.max_refinements; ++r) n *= 3;
+    text += " refined to a tolerance of " + format_number(job.pixel_tolerance) + " up to " +
+            std::to_string(n * n);
+  }
+  return text;
+}
 
 int samples_per_axis_of(const Scene& scene, const RenderOutputOptions& options) {
   return options.samples_per_axis > 0 ? options.samples_per_axis : scene.image.samples_per_axis;
@@ -292,7 +340,8 @@ int stream_band_rows(const Scene& scene, const RenderOutputOptions& options) {
   const int axis = samples_per_axis_of(scene, options);
   const double row_bytes = static_cast<double>(scene.image.width) *
                            (axis * axis * static_cast<double>(sizeof(Fragment)) +
-                            pixel_bytes(options.aov) + channel_count(options.aov) * sizeof(float));
+                            pixel_bytes(options.aov, adaptive(scene)) +
+                            channel_count(options.aov, adaptive(scene)) * sizeof(float));
   const double rows =
       options.band_rows > 0 ? options.band_rows : std::floor(kBandBytes / row_bytes);
   return static_cast<int>(std::clamp(rows, 1.0, static_cast<double>(scene.image.height)));
@@ -320,9 +369,13 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
       {{kWaveGridsItem, wave_grid_bytes(scene.waves)},
        {"projected grid (grid.columns x grid.rows)", vertices * vertex_bytes},
        {"sample fragments (" + area + " x render.samples_per_pixel)", samples * sizeof(Fragment)},
-       {"pixel buffers" + image, pixels * pixel_bytes(options.aov)},
-       {"EXR channels" + image, pixels * channel_count(options.aov) * sizeof(float)},
-       {"error histograms (lighting, pixel)", 2 * kHistogramBytes}}};
+       {"pixel buffers" + image, pixels * pixel_bytes(options.aov, adaptive(scene))},
+       {"EXR channels" + image,
+        pixels * channel_count(options.aov, adaptive(scene)) * sizeof(float)},
+       {"error histograms (lighting, pixel)", 2 * kHistogramBytes},
+       {"adaptive refinement (render.max_samples_per_pixel per thread)",
+        adaptive(scene) ? std::max(options.threads, 1) * refinement_bytes(axis, im.max_refinements)
+                        : 0.0}}};
 }
 
 namespace {
@@ -331,15 +384,14 @@ RenderedImage render_rows(PreparedRender& p, const RenderOutputOptions& options)
   const auto [first, last] = tile_rows(options.tile, options.tiles, p.scene.image.height);
   note(options.log,
        "rendering " + std::to_string(p.scene.image.width) + "x" +
-           std::to_string(p.scene.image.height) + " at " +
-           std::to_string(p.job.samples_per_axis * p.job.samples_per_axis) + " spp" +
+           std::to_string(p.scene.image.height) + " at " + sampling_text(p.job) +
            (options.tiles > 1 ? ", tile " + std::to_string(options.tile) + " of " +
                                     std::to_string(options.tiles) + " (rows " +
                                     std::to_string(first) + " to " + std::to_string(last - 1) + ")"
                               : std::string()));
   if (options.progress) p.job.progress = options.progress;
   // The error layer of a fast render is its difference from the reference (computed as well).
-  p.job.estimate_fast_error = options.aov;
+  p.job.estimate_fast_error = options.fast_lighting_error;
   p.job.layers = options.aov;
   p.job.first_row = first;
   p.job.last_row = last;
@@ -360,7 +412,8 @@ RenderPiece render_scene_piece(const Scene& scene, const RenderOutputOptions& op
                  "--max-memory (Python: max_memory=)");
   const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
   return {sha256_hex(p->scene.canonical), options.tile, options.tiles,
-          p->job.samples_per_axis,        options.aov,  render_rows(*p, options)};
+          p->job.samples_per_axis,        options.aov,  adaptive(p->scene),
+          render_rows(*p, options)};
 }
 
 RenderedScene scene_output(const Scene& scene, RenderedImage rendered, bool aov) {
@@ -375,7 +428,7 @@ RenderedScene scene_output(const Scene& scene, RenderedImage rendered, bool aov)
   r.radiance_f64_sha256 = report.radiance_f64_sha256;
   r.exr = render_exr_header(scene, r.image.unresolved, aov, r.pixel_sha256, r.radiance_f64_sha256,
                             pixel_error_attribute(report.pixel_error));
-  r.exr.channels = render_channels(r.image, aov);
+  r.exr.channels = render_channels(r.image, aov, adaptive(scene));
   return r;
 }
 
@@ -397,13 +450,13 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
   require_within(render_memory_estimate(scene, options), options.max_memory,
                  "--max-memory (Python: max_memory=)");
   const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
-  p->job.estimate_fast_error = options.aov;
+  p->job.estimate_fast_error = options.fast_lighting_error;
   p->job.layers = options.aov;
   const int height = p->scene.image.height;
   const int band = stream_band_rows(p->scene, options);
   note(options.log,
        "rendering " + std::to_string(p->scene.image.width) + "x" + std::to_string(height) + " at " +
-           std::to_string(p->job.samples_per_axis * p->job.samples_per_axis) + " spp" +
+           sampling_text(p->job) +
            (band < height ? " in bands of " + std::to_string(band) + " rows" : std::string()));
   const RenderFrame frame = prepare_frame(p->job, p->unresolved);
   RenderTally tally;
@@ -426,7 +479,9 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
     const RenderedImage image = render_rows(frame, first, last, progress);
     tally.add(image);
     std::vector<std::vector<float>> values;
-    for (ExrChannel& c : render_channels(image, options.aov)) values.push_back(std::move(c.values));
+    for (ExrChannel& c : render_channels(image, options.aov, adaptive(p->scene))) {
+      values.push_back(std::move(c.values));
+    }
     writer.write_rows(values, last - first);
   }
   const PreviewScale scale = preview_scale(tally, p->scene.image);
@@ -457,12 +512,17 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
 }
 
 std::string pixel_error_attribute(const PixelErrorSummary& e) {
-  std::string text =
-      e.estimated
-          ? "standard error of the pixel mean over " + std::to_string(e.samples_per_pixel) +
-                " samples, relative to the radiance: p50 " + format_number(e.p50_relative) +
-                ", p99 " + format_number(e.p99_relative) + ", max " + format_number(e.max_relative)
-          : std::string("not estimated: 1 sample per pixel");
+  const std::string samples =
+      e.adaptive ? "adaptive, mean " + format_number(e.mean_samples) + " samples per pixel (max " +
+                       format_number(e.max_samples) + ", " + std::to_string(e.capped_pixels) +
+                       " pixels capped above the tolerance)"
+                 : "over " + std::to_string(e.samples_per_pixel) + " samples";
+  std::string text = e.estimated
+                         ? "3 standard errors of the pixel mean, " + samples +
+                               ", relative to the radiance: p50 " + format_number(e.p50_relative) +
+                               ", p99 " + format_number(e.p99_relative) + ", max " +
+                               format_number(e.max_relative)
+                         : std::string("not estimated: 1 sample per pixel");
   OCEANREF_EXPECTS(text.size() <= kPixelErrorAttributeLength, "the pixel error summary fits");
   text.resize(kPixelErrorAttributeLength, ' ');
   return text;

@@ -42,7 +42,11 @@ std::unique_ptr<PreparedRender> prepare_render(
 struct RenderOutputOptions {
   int threads = 1;
   int samples_per_axis = 0;  // 0: the scene's
-  bool aov = false;          // also the layers (and, for a fast render, its reference error)
+  bool aov = false;          // also the layers
+  // shading.accuracy fast: also the reference lighting of every sample, so that lighting_error
+  // is the fast mode's error (|fast − reference| + the reference's estimate; costs a reference
+  // render). Without it a fast render's lighting_error is 0 (not estimated).
+  bool fast_lighting_error = false;
   std::function<void(const std::string&)> log;  // progress notes (may be empty)
   std::function<void(double)> progress;         // share of the image done (may be empty)
   // render_scene refuses (MemoryLimitError) a render whose estimate is over this many bytes.
@@ -102,14 +106,18 @@ LightingErrorSummary summarize_lighting_error(const RenderedImage& image);
 // `estimated` false with one sample per pixel (nothing to estimate it from).
 struct PixelErrorSummary {
   bool estimated = false;
-  int samples_per_pixel = 0;
+  int samples_per_pixel = 0;  // S² of the fixed grid (adaptive: before refinement)
+  bool adaptive = false;      // adaptive sampling (render.pixel_tolerance): then also
+  double mean_samples = 0.0;  // the mean and largest samples per pixel,
+  double max_samples = 0.0;
+  long capped_pixels = 0;  // the pixels that reached the cap above the tolerance
   double p50_relative = 0.0;
   double p99_relative = 0.0;
   double max_relative = 0.0;
 };
 // The render EXR's attribute oceanref.pixel_error: the summary in words, padded with spaces to
 // kPixelErrorAttributeLength bytes (a streamed render writes it after its last band).
-inline constexpr std::size_t kPixelErrorAttributeLength = 160;
+inline constexpr std::size_t kPixelErrorAttributeLength = 256;
 std::string pixel_error_attribute(const PixelErrorSummary& e);
 // The summary of one image (as a render in bands accumulates it).
 PixelErrorSummary summarize_pixel_error(const RenderedImage& image);

@@ -18,17 +18,18 @@
 namespace oceanref {
 
 namespace {
-constexpr const char* kMagic = "oceanref render piece 2\n";
+constexpr const char* kMagic = "oceanref render piece 3\n";
 constexpr std::size_t kMaxHeaderBytes = 1 << 16;
 
 // The buffers of a piece in file order: f(member) for each (a vector of Vec3 or of double), the
 // one list the writer, the reader and the merge follow.
 template <class F>
-void for_each_buffer(bool layers, const F& f) {
+void for_each_buffer(bool layers, bool adaptive, const F& f) {
   f(&RenderedImage::radiance);
   f(&RenderedImage::lighting_error);
   f(&RenderedImage::pixel_error);
   f(&RenderedImage::coverage);
+  if (adaptive) f(&RenderedImage::pixel_samples);
   if (!layers) return;
   f(&RenderedImage::sun);
   f(&RenderedImage::sky);
@@ -46,9 +47,9 @@ constexpr std::size_t channels_of() {
 }
 
 // Doubles per pixel in the file.
-std::uint64_t doubles_per_pixel(bool layers) {
+std::uint64_t doubles_per_pixel(bool layers, bool adaptive) {
   std::uint64_t n = 0;
-  for_each_buffer(layers, [&](auto member) {
+  for_each_buffer(layers, adaptive, [&](auto member) {
     n += channels_of<typename std::decay_t<decltype(RenderedImage{}.*member)>::value_type>();
   });
   return n;
@@ -84,6 +85,8 @@ void write_render_piece(const std::string& path, const RenderPiece& piece) {
       {"rows", b.height},
       {"samples_per_axis", piece.samples_per_axis},
       {"layers", piece.layers},
+      {"adaptive", piece.adaptive},
+      {"capped_pixels", b.capped_pixels},
       {"unconverged_samples", b.unconverged_samples},
       {"integrand_evaluations", b.integrand_evaluations},
       {"unresolved_slope_variance", {b.unresolved.upwind, b.unresolved.crosswind}},
@@ -91,7 +94,7 @@ void write_render_piece(const std::string& path, const RenderPiece& piece) {
   std::vector<std::uint8_t> bytes;
   const std::string text = kMagic + header.dump() + "\n";
   bytes.insert(bytes.end(), text.begin(), text.end());
-  for_each_buffer(piece.layers, [&](auto member) {
+  for_each_buffer(piece.layers, piece.adaptive, [&](auto member) {
     for (const auto& v : b.*member) {
       if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>) {
         append_bytes(bytes, v);
@@ -113,7 +116,8 @@ RenderPiece read_render_piece(const std::string& path) {
   in.seekg(0);
   std::string magic(std::strlen(kMagic), '\0');
   if (!in.read(magic.data(), static_cast<std::streamsize>(magic.size())) || magic != kMagic) {
-    fail(path, "not an oceanref render piece (its first line is not 'oceanref render piece 1')");
+    fail(path, "not an oceanref render piece of this version (its first line is not '" +
+                   std::string(kMagic, std::strlen(kMagic) - 1) + "')");
   }
   std::string line;
   line.reserve(1024);
@@ -145,9 +149,14 @@ RenderPiece read_render_piece(const std::string& path) {
     if (!h.at("scene_sha256").is_string() || h["scene_sha256"].get<std::string>().size() != 64) {
       fail(path, "header key scene_sha256: 64 hex digits expected");
     }
-    if (!h.at("layers").is_boolean()) fail(path, "header key layers: true or false expected");
+    for (const char* key : {"layers", "adaptive"}) {
+      if (!h.at(key).is_boolean()) {
+        fail(path, std::string("header key ") + key + ": true or false expected");
+      }
+    }
     piece.scene_sha256 = h["scene_sha256"].get<std::string>();
     piece.layers = h["layers"].get<bool>();
+    piece.adaptive = h["adaptive"].get<bool>();
     piece.tiles = static_cast<int>(integer("tiles", 1, kMaxExrSide));
     piece.tile = static_cast<int>(integer("tile", 0, piece.tiles - 1));
     piece.samples_per_axis = static_cast<int>(integer("samples_per_axis", 1, kMaxSamplesPerAxis));
@@ -155,6 +164,7 @@ RenderPiece read_render_piece(const std::string& path) {
     b.width = static_cast<int>(integer("width", 1, kMaxExrSide));
     b.first_row = static_cast<int>(integer("first_row", 0, kMaxExrSide - 1));
     b.height = static_cast<int>(integer("rows", 1, kMaxExrSide - b.first_row));
+    b.capped_pixels = integer("capped_pixels", 0, static_cast<long>(b.width) * b.height);
     b.unconverged_samples = integer("unconverged_samples", 0, std::numeric_limits<long>::max());
     b.integrand_evaluations = integer("integrand_evaluations", 0, std::numeric_limits<long>::max());
     const nlohmann::json& u = h.at("unresolved_slope_variance");
@@ -164,19 +174,20 @@ RenderPiece read_render_piece(const std::string& path) {
     b.unresolved = {number(u[0], "unresolved_slope_variance"),
                     number(u[1], "unresolved_slope_variance")};
     b.displacement_bound = number(h.at("displacement_bound"), "displacement_bound");
-    if (h.size() != 12) fail(path, "the header has keys other than those of format 1");
+    if (h.size() != 14) fail(path, "the header has keys other than those of format 3");
   } catch (const nlohmann::json::exception& e) {
     fail(path, std::string("unreadable header: ") + e.what());
   }
   const std::uint64_t pixels =
       static_cast<std::uint64_t>(b.width) * static_cast<std::uint64_t>(b.height);
-  const std::uint64_t expected = body + pixels * doubles_per_pixel(piece.layers) * 8;
+  const std::uint64_t expected =
+      body + pixels * doubles_per_pixel(piece.layers, piece.adaptive) * 8;
   if (size != expected) {
     fail(path, "the file holds " + std::to_string(size) + " bytes; its header describes " +
                    std::to_string(expected));
   }
   std::vector<unsigned char> row;
-  for_each_buffer(piece.layers, [&](auto member) {
+  for_each_buffer(piece.layers, piece.adaptive, [&](auto member) {
     auto& buffer = b.*member;
     using Value = typename std::decay_t<decltype(buffer)>::value_type;
     constexpr std::size_t channels = channels_of<Value>();
@@ -213,9 +224,9 @@ RenderedImage merge_render_pieces(const Scene& scene, const std::vector<RenderPi
                      scene_hash + ")");
     }
     if (p.tiles != first.tiles || p.samples_per_axis != first.samples_per_axis ||
-        p.layers != first.layers) {
-      fail(path, "its tile count, samples per pixel or layers differ from " + paths.front() +
-                     "'s (one render's pieces share them)");
+        p.layers != first.layers || p.adaptive != first.adaptive) {
+      fail(path, "its tile count, samples per pixel, layers or adaptive sampling differ from " +
+                     paths.front() + "'s (one render's pieces share them)");
     }
     if (p.band.width != width || p.tiles > height ||
         tile_rows(p.tile, p.tiles, height) !=
@@ -255,7 +266,8 @@ RenderedImage merge_render_pieces(const Scene& scene, const std::vector<RenderPi
     const RenderedImage& band = pieces[static_cast<std::size_t>(i)].band;
     image.unconverged_samples += band.unconverged_samples;
     image.integrand_evaluations += band.integrand_evaluations;
-    for_each_buffer(first.layers, [&](auto member) {
+    image.capped_pixels += band.capped_pixels;
+    for_each_buffer(first.layers, first.adaptive, [&](auto member) {
       (image.*member).insert((image.*member).end(), (band.*member).begin(), (band.*member).end());
     });
   }

@@ -29,14 +29,16 @@ struct RenderPiece {
   std::string scene_sha256;  // of the scene's canonical form (Scene::canonical)
   int tile = 0, tiles = 1;   // tile `tile` of `tiles`
   int samples_per_axis = 1;
-  bool layers = false;  // the band holds the --aov layers
-  RenderedImage band;   // width × rows from band.first_row (unresolved, bound, counts included)
+  bool layers = false;    // the band holds the --aov layers
+  bool adaptive = false;  // and the sample counts of adaptive sampling (pixel_samples)
+  RenderedImage band;     // width × rows from band.first_row (unresolved, bound, counts included)
 };
 
 // Writes the piece atomically (io/output_file.h). Format (docs/FILES.md): the line
-// "oceanref render piece 1", a one-line JSON header, then the band's buffers as binary64
-// little-endian, row-major: radiance RGB, lighting_error RGB, coverage, and with layers sun,
-// sky, sea, foam RGB, depth, normal xyz, x0 xyz.
+// "oceanref render piece 3", a one-line JSON header, then the band's buffers as binary64
+// little-endian, row-major: radiance RGB, lighting_error RGB, pixel_error RGB, coverage, with
+// adaptive sampling pixel_samples, and with layers sun, sky, sea, foam RGB, depth, normal xyz,
+// x0 xyz.
 void write_render_piece(const std::string& path, const RenderPiece& piece);
 // Reads and checks a piece: the magic line, every header field (types and ranges), and the size
 // of the file against the header, before anything large is allocated. Throws RenderPieceError.

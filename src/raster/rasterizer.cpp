@@ -41,12 +41,19 @@ void rasterize_indexed(const std::vector<ScreenVertex>& vertices,
                        const std::vector<std::array<std::uint32_t, 3>>& triangles,
                        std::size_t count, const Index& index, const SampleGrid& grid, int first_row,
                        int last_row, double near, std::vector<Fragment>& fragments,
-                       int fragment_row) {
+                       int fragment_row, FragmentColumns window) {
   const int columns = grid.columns();
-  const std::size_t width = static_cast<std::size_t>(columns);
-  OCEANREF_EXPECTS(grid.samples_per_axis >= 1 && columns >= 1 && fragments.size() % width == 0,
+  const int first_column = window.first;
+  const int end_column = window.count < 0 ? columns : first_column + window.count;
+  OCEANREF_EXPECTS(grid.samples_per_axis >= 1 && 0 <= first_column && first_column < end_column &&
+                       end_column <= columns,
+                   "sample columns [" + std::to_string(first_column) + ", " +
+                       std::to_string(end_column) + ") inside the grid's " +
+                       std::to_string(columns));
+  const std::size_t width = static_cast<std::size_t>(end_column - first_column);
+  OCEANREF_EXPECTS(fragments.size() % width == 0,
                    "whole sample rows of fragments: " + std::to_string(fragments.size()) +
-                       " for rows of " + std::to_string(columns));
+                       " for rows of " + std::to_string(width));
   const int fragment_end = fragment_row + static_cast<int>(fragments.size() / width);
   OCEANREF_EXPECTS(0 <= fragment_row && fragment_row <= first_row && first_row <= last_row &&
                        last_row <= fragment_end && fragment_end <= grid.rows(),
@@ -104,11 +111,12 @@ void rasterize_indexed(const std::vector<ScreenVertex>& vertices,
       if (!(x_hi >= x_lo)) continue;
       // One sample of slack on each side; the edge functions decide exactly.
       // Clamped as doubles: a vertex far off screen never overflows an int.
-      const double last_column = columns;
-      const int col_begin =
-          static_cast<int>(std::fmin(std::fmax(0.0, std::floor(x_lo * s - 0.5)), last_column));
-      const int col_end =
-          static_cast<int>(std::fmax(std::fmin(last_column, std::ceil(x_hi * s - 0.5) + 1.0), 0.0));
+      const double lowest_column = first_column;
+      const double last_column = end_column;
+      const int col_begin = static_cast<int>(
+          std::fmin(std::fmax(lowest_column, std::floor(x_lo * s - 0.5)), last_column));
+      const int col_end = static_cast<int>(
+          std::fmax(std::fmin(last_column, std::ceil(x_hi * s - 0.5) + 1.0), lowest_column));
       for (int col = col_begin; col < col_end; ++col) {
         const Point q{grid.sample_x(col), sy};
         const double e0 = edge_function(b, c, q);  // weight of a
@@ -123,7 +131,7 @@ void rasterize_indexed(const std::vector<ScreenVertex>& vertices,
         const double sum = la + lb + lc;
         const double depth = 1.0 / sum;
         Fragment& f = fragments[static_cast<std::size_t>(row - fragment_row) * width +
-                                static_cast<std::size_t>(col)];
+                                static_cast<std::size_t>(col - first_column)];
         if (f.triangle >= 0 && !(depth < f.depth)) continue;
         f.depth = depth;
         f.triangle = static_cast<std::int64_t>(t);
@@ -142,22 +150,23 @@ void rasterize_indexed(const std::vector<ScreenVertex>& vertices,
 void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
                int first_row, int last_row, double near, std::vector<Fragment>& fragments,
-               int fragment_row) {
+               int fragment_row, FragmentColumns window) {
   rasterize_indexed(
       vertices, triangles, triangles.size(), [](std::size_t i) { return i; }, grid, first_row,
-      last_row, near, fragments, fragment_row);
+      last_row, near, fragments, fragment_row, window);
 }
 
 void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::array<std::uint32_t, 3>>& triangles,
                const std::vector<std::uint32_t>& subset, const SampleGrid& grid, int first_row,
-               int last_row, double near, std::vector<Fragment>& fragments, int fragment_row) {
+               int last_row, double near, std::vector<Fragment>& fragments, int fragment_row,
+               FragmentColumns window) {
   for (std::size_t i = 1; i < subset.size(); ++i) {
     OCEANREF_EXPECTS(subset[i - 1] < subset[i], "triangle indices in ascending order");
   }
   rasterize_indexed(
       vertices, triangles, subset.size(), [&](std::size_t i) { return subset[i]; }, grid, first_row,
-      last_row, near, fragments, fragment_row);
+      last_row, near, fragments, fragment_row, window);
 }
 
 std::pair<double, double> sample_rows_of(const ScreenVertex& a, const ScreenVertex& b,

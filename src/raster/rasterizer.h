@@ -43,21 +43,31 @@ struct Fragment {
   std::array<double, 3> weights{};
 };
 
+// The sample columns a fragment buffer holds: [first, first + count) of the grid's (count −1: to
+// the end of the row).
+struct FragmentColumns {
+  int first = 0;
+  int count = -1;
+};
+
 // Rasterizes triangles (vertex indices into `vertices`, in order) into the fragments of sample
 // rows [first_row, last_row) of `fragments`, which holds the rows [fragment_row, fragment_row +
-// fragments.size()/columns) of the grid (fragment_row ≤ first_row): disjoint row bands can run on
-// different threads, or in different processes, with identical results. Triangles with a vertex
-// at z ≤ near are skipped (the projected grid keeps the sea in front of the camera).
+// fragments.size()/window columns) of the grid (fragment_row ≤ first_row), each the window's
+// columns: disjoint row bands, or windows, can run on different threads, or in different
+// processes, with identical results (a sample's fragment does not depend on the window).
+// Triangles with a vertex at z ≤ near are skipped (the projected grid keeps the sea in front of
+// the camera).
 void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::array<std::uint32_t, 3>>& triangles, const SampleGrid& grid,
                int first_row, int last_row, double near, std::vector<Fragment>& fragments,
-               int fragment_row = 0);
+               int fragment_row = 0, FragmentColumns window = {});
 // The same for the triangles triangles[i], i in `subset` (ascending: the order of a full pass,
 // so that depth ties resolve the same way), e.g. those that reach a band (sample_rows_of).
 void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::array<std::uint32_t, 3>>& triangles,
                const std::vector<std::uint32_t>& subset, const SampleGrid& grid, int first_row,
-               int last_row, double near, std::vector<Fragment>& fragments, int fragment_row = 0);
+               int last_row, double near, std::vector<Fragment>& fragments, int fragment_row = 0,
+               FragmentColumns window = {});
 
 // The sample rows [first, last) a triangle can cover (first ≥ last when none: behind the near
 // plane, or not finite); rasterize writes no sample outside them.

@@ -166,7 +166,159 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
   return fragments;
 }
 
+// What the resolve of a pixel keeps of one sample.
+struct SampleValue {
+  Vec3 radiance{}, lighting_error{}, sun{}, sky{}, sea{}, foam{};
+  double whitecap_coverage = 0.0;
+  Vec3 normal{};
+  glm::dvec2 x0{0.0};
+  double depth = 0.0;
+  bool hit = false;
+};
+
+SampleValue sample_value(const SampleProbe& p) {
+  return {p.radiance, p.lighting_error,    p.lighting.sun, p.lighting.sky, p.lighting.sea,
+          p.foam,     p.whitecap_coverage, p.normal,       p.x0,           p.depth,
+          p.hit};
+}
+
+// A pixel's mean radiance and its estimated error as the pixel integral.
+struct PixelEstimate {
+  Vec3 mean{};
+  Vec3 error{};
+};
+
+// The pixel from its samples and their estimate, box-filtered: Σ (1/n)·value in sample order
+// from 0 (as mean_radiance); depth, normal and x0 the means over the sea samples.
+void resolve_into(RenderedImage& image, std::size_t pixel, std::span<const SampleValue> values,
+                  const PixelEstimate& estimate, bool layers) {
+  const double per_sample = 1.0 / static_cast<double>(values.size());
+  Vec3 lighting_error{}, sun{}, sky{}, sea{}, foam{}, normal{}, x0{};
+  double depth = 0.0;
+  int hits = 0;
+  for (const SampleValue& v : values) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      lighting_error[c] += per_sample * v.lighting_error[c];
+      sun[c] += per_sample * v.sun[c];
+      sky[c] += per_sample * v.sky[c];
+      sea[c] += per_sample * v.sea[c];
+      foam[c] += per_sample * v.whitecap_coverage * v.foam[c];
+    }
+    if (!v.hit) continue;
+    ++hits;
+    depth += v.depth;
+    for (std::size_t c = 0; c < 3; ++c) normal[c] += v.normal[c];
+    x0[0] += v.x0.x;
+    x0[2] += v.x0.y;
+  }
+  image.radiance[pixel] = estimate.mean;
+  image.pixel_error[pixel] = estimate.error;
+  image.lighting_error[pixel] = lighting_error;
+  image.coverage[pixel] = hits * per_sample;
+  if (!layers) return;
+  image.sun[pixel] = sun;
+  image.sky[pixel] = sky;
+  image.sea[pixel] = sea;
+  image.foam[pixel] = foam;
+  if (hits > 0) {
+    depth /= hits;
+    for (std::size_t c = 0; c < 3; ++c) {
+      normal[c] /= hits;
+      x0[c] /= hits;
+    }
+  }
+  image.depth[pixel] = depth;
+  image.normal[pixel] = normal;
+  image.x0[pixel] = x0;
+}
+
+// The mean radiance of a pixel's samples, as resolve_into sums it (the same bits).
+Vec3 mean_radiance(std::span<const SampleValue> values) {
+  const double per_sample = 1.0 / static_cast<double>(values.size());
+  Vec3 mean{};
+  for (const SampleValue& v : values) {
+    for (std::size_t c = 0; c < 3; ++c) mean[c] += per_sample * v.radiance[c];
+  }
+  return mean;
+}
+
+PixelEstimate fixed_grid_estimate(std::span<const SampleValue> values) {
+  PixelEstimate e;
+  e.mean = mean_radiance(values);
+  std::array<Vec3, kMaxSamplesPerAxis * kMaxSamplesPerAxis> radiance;
+  for (std::size_t i = 0; i < values.size(); ++i) radiance[i] = values[i].radiance;
+  const Vec3 se = pixel_standard_error(std::span(radiance.data(), values.size()), e.mean);
+  for (std::size_t c = 0; c < 3; ++c) e.error[c] = kPixelErrorStandardErrors * se[c];
+  return e;
+}
+
+PixelEstimate nested_grid_estimate(std::span<const SampleValue> values, int n) {
+  PixelEstimate e;
+  e.mean = mean_radiance(values);
+  // The nine interleaved (n/3)×(n/3) grids (every third sample from offset (i, j)): each a
+  // stratified estimate of the pixel; their spread gives the standard error of their mean.
+  std::array<Vec3, 9> sub{};
+  const int m = n / 3;
+  const double per_sample = 1.0 / (static_cast<double>(m) * m);
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      const Vec3& v = values[static_cast<std::size_t>(b) * static_cast<std::size_t>(n) +
+                             static_cast<std::size_t>(a)]
+                          .radiance;
+      Vec3& g = sub[static_cast<std::size_t>(3 * (b % 3) + a % 3)];
+      for (std::size_t c = 0; c < 3; ++c) g[c] += per_sample * v[c];
+    }
+  }
+  const Vec3 spread = pixel_standard_error(sub, e.mean);
+  for (std::size_t c = 0; c < 3; ++c) e.error[c] = kPixelErrorStandardErrors * spread[c];
+  return e;
+}
+
+bool within_tolerance(const PixelEstimate& e, const RenderJob& job) {
+  const double largest = std::max({e.mean[0], e.mean[1], e.mean[2]});
+  for (std::size_t c = 0; c < 3; ++c) {
+    if (!(e.error[c] <= job.pixel_tolerance * largest)) return false;
+  }
+  return true;
+}
+
+// For each pixel row of [first_row, last_row), the triangles (ascending) whose screen extent
+// reaches it; triangles behind the near plane, or not finite, reach none.
+std::vector<std::vector<std::uint32_t>> triangles_by_pixel_row(const RenderJob& job,
+                                                               const Geometry& g, int first_row,
+                                                               int last_row) {
+  std::vector<std::vector<std::uint32_t>> rows(static_cast<std::size_t>(last_row - first_row));
+  for (std::size_t t = 0; t < g.triangles.size(); ++t) {
+    const auto& v = g.triangles[t];
+    const ScreenVertex &a = g.screen[v[0]], &b = g.screen[v[1]], &c = g.screen[v[2]];
+    if (!(a.z > job.grid.near && b.z > job.grid.near && c.z > job.grid.near)) continue;
+    const double lo = std::fmax(std::floor(std::min({a.y, b.y, c.y})), first_row);
+    const double hi = std::fmin(std::floor(std::max({a.y, b.y, c.y})), last_row - 1.0);
+    if (!(lo <= hi)) continue;  // NaN too
+    for (int y = static_cast<int>(lo); y <= static_cast<int>(hi); ++y) {
+      rows[static_cast<std::size_t>(y - first_row)].push_back(static_cast<std::uint32_t>(t));
+    }
+  }
+  return rows;
+}
+
+// Whether triangle t's screen extent reaches pixel column x.
+bool reaches_column(const Geometry& g, std::uint32_t t, int x) {
+  const auto& v = g.triangles[t];
+  const double lo = std::min({g.screen[v[0]].x, g.screen[v[1]].x, g.screen[v[2]].x});
+  const double hi = std::max({g.screen[v[0]].x, g.screen[v[1]].x, g.screen[v[2]].x});
+  return lo <= x + 1.0 && hi >= x;
+}
+
 }  // namespace
+
+double refinement_bytes(int samples_per_axis, int refinements) {
+  double n = samples_per_axis;
+  for (int r = 0; r < refinements; ++r) n *= 3.0;
+  const double finest = n * n;
+  return finest * static_cast<double>(sizeof(Fragment)) +
+         (finest + finest / 9.0) * static_cast<double>(sizeof(SampleValue));
+}
 
 Vec3 pixel_standard_error(std::span<const Vec3> samples, const Vec3& mean) {
   Vec3 error{};
@@ -276,68 +428,95 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
     image.normal = pixel_buffer("normal");
     image.x0 = pixel_buffer("x0");
   }
+  const bool adaptive = job.pixel_tolerance > 0.0;
+  if (adaptive) {
+    image.pixel_samples = allocate_buffer<double>(pixels, "the per-pixel sample counts");
+  }
+  const std::vector<std::vector<std::uint32_t>> row_triangles =
+      adaptive ? triangles_by_pixel_row(job, g, first_row, last_row)
+               : std::vector<std::vector<std::uint32_t>>{};
   std::atomic<long> unconverged{0};
   std::atomic<long> evaluations{0};
-  const double per_sample = 1.0 / (s * s);
+  std::atomic<long> capped{0};
   std::atomic<int> rows_done{0};
   const int report_every = std::max(1, image.height / 50);
   parallel_for(image.height, job.threads, [&](int y) {  // y: the band's row
     long row_unconverged = 0;
     long row_evaluations = 0;
+    long row_capped = 0;
+    const auto shade = [&](const Fragment& f, const SampleGrid& samples, int row, int column) {
+      const glm::dvec3 ray =
+          ray_direction(job.camera, samples.sample_x(column), samples.sample_y(row));
+      const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
+      if (!p.lighting.converged) ++row_unconverged;
+      row_evaluations += p.lighting.evaluations;
+      return sample_value(p);
+    };
+    std::vector<SampleValue> values;
+    std::vector<SampleValue> finer;
+    std::vector<Fragment> window;
+    std::vector<std::uint32_t> subset;
     for (int x = 0; x < image.width; ++x) {
       const std::size_t pixel =
           static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
           static_cast<std::size_t>(x);
-      int hits = 0;
-      std::array<Vec3, kMaxSamplesPerAxis * kMaxSamplesPerAxis> samples;
-      std::size_t sample = 0;
+      values.clear();
       for (int b = 0; b < s; ++b) {
         for (int a = 0; a < s; ++a) {
           const int band_row = y * s + b;
           const int row = first_row * s + band_row;  // of the image's sample grid
           const int column = x * s + a;
-          const Fragment& f = fragments[static_cast<std::size_t>(band_row) *
-                                            static_cast<std::size_t>(grid.columns()) +
-                                        static_cast<std::size_t>(column)];
-          const glm::dvec3 ray =
-              ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-          const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
-          samples[sample++] = p.radiance;
-          for (std::size_t c = 0; c < 3; ++c) {
-            image.radiance[pixel][c] += per_sample * p.radiance[c];
-            image.lighting_error[pixel][c] += per_sample * p.lighting_error[c];
-          }
-          if (!p.lighting.converged) ++row_unconverged;
-          row_evaluations += p.lighting.evaluations;
-          if (p.hit) ++hits;
-          if (!layers) continue;
-          for (std::size_t c = 0; c < 3; ++c) {
-            image.sun[pixel][c] += per_sample * p.lighting.sun[c];
-            image.sky[pixel][c] += per_sample * p.lighting.sky[c];
-            image.sea[pixel][c] += per_sample * p.lighting.sea[c];
-            image.foam[pixel][c] += per_sample * p.whitecap_coverage * p.foam[c];
-          }
-          if (p.hit) {
-            image.depth[pixel] += p.depth;
-            for (std::size_t c = 0; c < 3; ++c) image.normal[pixel][c] += p.normal[c];
-            image.x0[pixel][0] += p.x0.x;
-            image.x0[pixel][2] += p.x0.y;
-          }
+          values.push_back(shade(fragments[static_cast<std::size_t>(band_row) *
+                                               static_cast<std::size_t>(grid.columns()) +
+                                           static_cast<std::size_t>(column)],
+                                 grid, row, column));
         }
       }
-      image.coverage[pixel] = hits * per_sample;
-      image.pixel_error[pixel] =
-          pixel_standard_error(std::span(samples.data(), sample), image.radiance[pixel]);
-      if (layers && hits > 0) {
-        image.depth[pixel] /= hits;
-        for (std::size_t c = 0; c < 3; ++c) {
-          image.normal[pixel][c] /= hits;
-          image.x0[pixel][c] /= hits;
+      PixelEstimate estimate = fixed_grid_estimate(values);
+      if (adaptive) {
+        const int image_row = first_row + y;
+        int n = s;  // samples per axis
+        // One sample estimates nothing: refined at least once.
+        for (int r = 0;
+             r < job.max_refinements && !(values.size() > 1 && within_tolerance(estimate, job));
+             ++r) {
+          // The 3n×3n grid: the n×n samples are the centres of its 3×3 cells.
+          const int m = 3 * n;
+          const SampleGrid samples{job.camera.width, job.camera.height, m};
+          subset.clear();
+          for (const std::uint32_t t : row_triangles[static_cast<std::size_t>(y)]) {
+            if (reaches_column(g, t, x)) subset.push_back(t);
+          }
+          window.assign(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), Fragment{});
+          rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
+                    job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
+          finer.clear();
+          for (int b = 0; b < m; ++b) {
+            for (int a = 0; a < m; ++a) {
+              if (a % 3 == 1 && b % 3 == 1) {
+                finer.push_back(
+                    values[static_cast<std::size_t>(b / 3) * static_cast<std::size_t>(n) +
+                           static_cast<std::size_t>(a / 3)]);
+              } else {
+                finer.push_back(
+                    shade(window[static_cast<std::size_t>(b) * static_cast<std::size_t>(m) +
+                                 static_cast<std::size_t>(a)],
+                          samples, image_row * m + b, x * m + a));
+              }
+            }
+          }
+          std::swap(values, finer);
+          n = m;
+          estimate = nested_grid_estimate(values, n);
         }
+        image.pixel_samples[pixel] = static_cast<double>(values.size());
+        if (!within_tolerance(estimate, job)) ++row_capped;
       }
+      resolve_into(image, pixel, values, estimate, layers);
     }
     unconverged += row_unconverged;
     evaluations += row_evaluations;
+    capped += row_capped;
     const int done = ++rows_done;
     if (progress && (done % report_every == 0 || done == image.height)) {
       progress(static_cast<double>(done) / image.height);
@@ -346,6 +525,7 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
   clock.lap(&RenderTimes::shading);
   image.unconverged_samples = unconverged;
   image.integrand_evaluations = evaluations;
+  image.capped_pixels = capped;
   require_finite(image);
   return image;
 }

@@ -20,8 +20,16 @@
 
 namespace oceanref {
 
-// The largest S of S×S samples per pixel (256 spp, the scene's and --spp's range).
-inline constexpr int kMaxSamplesPerAxis = 16;
+// The largest S of S×S samples per pixel (1024 spp, the scene's and --spp's range).
+inline constexpr int kMaxSamplesPerAxis = 32;
+// The finest grid of adaptive sampling: S·3^r ≤ 243 = 3⁵ samples per axis (59049 per pixel); every
+// S has at least one refinement.
+inline constexpr int kMaxAdaptiveSamplesPerAxis = 243;
+static_assert(3 * kMaxSamplesPerAxis <= kMaxAdaptiveSamplesPerAxis);
+// The pixel error (RenderedImage::pixel_error) in standard errors of the pixel's mean.
+inline constexpr double kPixelErrorStandardErrors = 3.0;
+// The smallest pixel tolerance a scene may ask for (relative to the pixel's largest channel).
+inline constexpr double kMinPixelTolerance = 1e-4;
 
 struct RenderJob {
   const Ocean* ocean = nullptr;
@@ -31,6 +39,14 @@ struct RenderJob {
   Sky sky;
   ShadingSettings shading;
   int samples_per_axis = 2;  // S: S×S stratified samples per pixel, 1…kMaxSamplesPerAxis
+  // Adaptive sampling (`render.pixel_tolerance`): a pixel whose estimated error exceeds
+  // pixel_tolerance × its largest channel is refined by nested stratification — its S×S grid
+  // becomes 3S×3S, whose cell centres are the S×S samples (kept), then 9S×9S, … — until the
+  // estimate meets the tolerance or the grid has S·3^max_refinements samples per axis (the cap).
+  // The stopping rule reads the pixel's own samples only: any thread count, band or tile gives
+  // the same bits. 0: the fixed S×S grid (no refinement).
+  double pixel_tolerance = 0.0;
+  int max_refinements = 0;  // S·3^max_refinements ≤ kMaxAdaptiveSamplesPerAxis
   int threads = 1;
   // The pixel rows rendered, [first_row, last_row) of the camera's image (last_row −1: to the
   // bottom): a band of the image, each pixel the same bits as in the whole image (tiles,
@@ -66,14 +82,24 @@ struct RenderedImage {
   // not estimated: fast accuracy without estimate_fast_error).
   std::vector<Vec3> lighting_error;
   // Estimated absolute error of `radiance` as the pixel integral (the box filter over the
-  // pixel), per channel: the standard error of the mean of the pixel's S² samples
-  // (pixel_standard_error); 0 with one sample per pixel, where nothing estimates it.
+  // pixel), per channel, as a bound: kPixelErrorStandardErrors standard errors of the pixel's
+  // mean — of the S² samples of the fixed grid taken as independent (pixel_standard_error; 0
+  // with one sample, where nothing estimates it), or after a refinement to n×n samples the
+  // spread of the nine interleaved (n/3)×(n/3) grids' means (each a stratified estimate).
   std::vector<Vec3> pixel_error;
+  // Adaptive sampling only (RenderJob::pixel_tolerance > 0), else empty: the samples behind each
+  // pixel ((S·3^r)² after r refinements).
+  std::vector<double> pixel_samples;
+  long capped_pixels = 0;        // adaptive pixels that reached the cap above the tolerance
   long unconverged_samples = 0;  // samples whose reference integrals missed the tolerance
   long integrand_evaluations = 0;
   SlopeVariance unresolved;  // the BRDF roughness used
   double displacement_bound = 0.0;
 };
+
+// The scratch memory of one thread's adaptive refinement from S×S samples up to
+// S·3^refinements per axis: the samples of two levels and the fragments of one [bytes].
+double refinement_bytes(int samples_per_axis, int refinements);
 
 // The standard error of the mean of a pixel's samples, per channel:
 // √(Σᵢ (xᵢ − mean)² / (n (n − 1))), summed in sample order; 0 for n < 2. The samples are those of

@@ -87,6 +87,8 @@ const std::vector<std::string>& scene_key_paths() {
       "render.width",
       "render.height",
       "render.samples_per_pixel",
+      "render.pixel_tolerance",
+      "render.max_samples_per_pixel",
       "render.tone_key",
       "render.tone_white",
   };
@@ -469,6 +471,42 @@ glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, doubl
   return out;
 }
 
+// render.pixel_tolerance and its cap render.max_samples_per_pixel, (S·3^r)² for r refinements
+// of the S×S grid (renderer.h).
+void parse_adaptive_sampling(const Section& render, ImageSettings& im) {
+  const int s = im.samples_per_axis;
+  std::vector<int> caps;  // the valid caps, (S·3^r)² for r ≥ 1
+  for (int n = 3 * s; n <= kMaxAdaptiveSamplesPerAxis; n *= 3) caps.push_back(n * n);
+  if (!render.has("pixel_tolerance")) {
+    if (render.has("max_samples_per_pixel")) {
+      throw SceneError("render.max_samples_per_pixel",
+                       "applies with render.pixel_tolerance only (adaptive sampling)");
+    }
+    return;
+  }
+  im.pixel_tolerance = render.number("pixel_tolerance", 0.0, kMinPixelTolerance, 1.0);
+  // The default cap: the largest valid one up to the fixed grid's most samples (1024; the first
+  // valid one when none is that small). There is always one: 3S ≤ 3·kMaxSamplesPerAxis ≤ 243.
+  int fallback = caps.front();
+  for (const int c : caps) {
+    if (c <= kMaxSamplesPerAxis * kMaxSamplesPerAxis) fallback = c;
+  }
+  const int cap = render.integer("max_samples_per_pixel", fallback, 0,
+                                 kMaxAdaptiveSamplesPerAxis * kMaxAdaptiveSamplesPerAxis);
+  const auto found = std::find(caps.begin(), caps.end(), cap);
+  if (found == caps.end()) {
+    std::string valid;
+    for (const int c : caps) valid += (valid.empty() ? "" : ", ") + std::to_string(c);
+    throw SceneError("render.max_samples_per_pixel",
+                     "must be (S*3^r)^2 for r >= 1 refinements of the S x S grid of "
+                     "render.samples_per_pixel " +
+                         std::to_string(s * s) + " and at most " +
+                         std::to_string(kMaxAdaptiveSamplesPerAxis * kMaxAdaptiveSamplesPerAxis) +
+                         ": one of " + valid + "; got " + std::to_string(cap));
+  }
+  im.max_refinements = static_cast<int>(found - caps.begin()) + 1;
+}
+
 void parse_rendering(const Section& top, Scene& scene) {
   const json empty = json::object();
   const Section camera(top.has("camera") ? top.at("camera") : empty, "camera");
@@ -532,7 +570,8 @@ void parse_rendering(const Section& top, Scene& scene) {
   ImageSettings& im = scene.image;
   im.width = render.integer("width", im.width, 1, 16384);
   im.height = render.integer("height", im.height, 1, 16384);
-  const int spp = render.integer("samples_per_pixel", 4, 1, 256);
+  const int spp =
+      render.integer("samples_per_pixel", 4, 1, kMaxSamplesPerAxis * kMaxSamplesPerAxis);
   const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
   if (axis * axis != spp) {
     throw SceneError(
@@ -540,6 +579,7 @@ void parse_rendering(const Section& top, Scene& scene) {
         "must be a square number S*S (S x S stratified samples), got " + std::to_string(spp));
   }
   im.samples_per_axis = axis;
+  parse_adaptive_sampling(render, im);
   im.tone_key = render.number("tone_key", im.tone_key, 1e-3, 1.0);
   im.tone_white = render.number("tone_white", im.tone_white, 0.0, 1e30);
   try {
@@ -800,6 +840,8 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) 
   job.sky = scene_sky(scene);
   job.shading = scene.shading;
   job.samples_per_axis = scene.image.samples_per_axis;
+  job.pixel_tolerance = scene.image.pixel_tolerance;
+  job.max_refinements = scene.image.max_refinements;
   job.threads = threads;
   return job;
 }

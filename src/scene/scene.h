@@ -48,8 +48,11 @@ struct ImageSettings {
   int width = 640;
   int height = 360;
   int samples_per_axis = 2;  // samples_per_pixel = S²
-  double tone_key = 0.18;    // Reinhard key a for the PNG preview
-  double tone_white = 0.0;   // L_white for the preview; 0: the largest scaled luminance
+  // Adaptive sampling (RenderJob::pixel_tolerance, max_refinements); 0: the fixed S×S grid.
+  double pixel_tolerance = 0.0;
+  int max_refinements = 0;
+  double tone_key = 0.18;   // Reinhard key a for the PNG preview
+  double tone_white = 0.0;  // L_white for the preview; 0: the largest scaled luminance
 };
 
 // A key present in a scene file that does nothing for this scene (pbrt-v4's ReportUnused): e.g.
