@@ -452,10 +452,33 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
       row_evaluations += p.lighting.evaluations;
       return sample_value(p);
     };
-    std::vector<SampleValue> values;
+    std::vector<SampleValue> values;  // the pixel's samples, row-major
     std::vector<SampleValue> finer;
     std::vector<Fragment> window;
-    std::vector<std::uint32_t> subset;
+    std::vector<std::uint32_t> subset;  // the triangles that reach the pixel
+    // The n×n samples of pixel (x, image_row) refined to 3n×3n: the n×n are the centres of its
+    // 3×3 cells, the others shaded from their fragments (the pixel's footprint rasterized at the
+    // finer grid from `subset`: the same fragments as a whole raster pass at that grid).
+    const auto refine = [&](int x, int image_row, int n) {
+      const int m = 3 * n;
+      const SampleGrid samples{job.camera.width, job.camera.height, m};
+      window.assign(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), Fragment{});
+      rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
+                job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
+      const auto at = [](int row, int column, int width) {  // row-major index
+        return static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
+               static_cast<std::size_t>(column);
+      };
+      finer.clear();
+      for (int b = 0; b < m; ++b) {
+        for (int a = 0; a < m; ++a) {
+          finer.push_back(a % 3 == 1 && b % 3 == 1
+                              ? values[at(b / 3, a / 3, n)]
+                              : shade(window[at(b, a, m)], samples, image_row * m + b, x * m + a));
+        }
+      }
+      std::swap(values, finer);
+    };
     for (int x = 0; x < image.width; ++x) {
       const std::size_t pixel =
           static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
@@ -474,39 +497,19 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
       }
       PixelEstimate estimate = fixed_grid_estimate(values);
       if (adaptive) {
-        const int image_row = first_row + y;
         int n = s;  // samples per axis
         // One sample estimates nothing: refined at least once.
         for (int r = 0;
              r < job.max_refinements && !(values.size() > 1 && within_tolerance(estimate, job));
              ++r) {
-          // The 3n×3n grid: the n×n samples are the centres of its 3×3 cells.
-          const int m = 3 * n;
-          const SampleGrid samples{job.camera.width, job.camera.height, m};
-          subset.clear();
-          for (const std::uint32_t t : row_triangles[static_cast<std::size_t>(y)]) {
-            if (reaches_column(g, t, x)) subset.push_back(t);
-          }
-          window.assign(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), Fragment{});
-          rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
-                    job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
-          finer.clear();
-          for (int b = 0; b < m; ++b) {
-            for (int a = 0; a < m; ++a) {
-              if (a % 3 == 1 && b % 3 == 1) {
-                finer.push_back(
-                    values[static_cast<std::size_t>(b / 3) * static_cast<std::size_t>(n) +
-                           static_cast<std::size_t>(a / 3)]);
-              } else {
-                finer.push_back(
-                    shade(window[static_cast<std::size_t>(b) * static_cast<std::size_t>(m) +
-                                 static_cast<std::size_t>(a)],
-                          samples, image_row * m + b, x * m + a));
-              }
+          if (r == 0) {
+            subset.clear();
+            for (const std::uint32_t t : row_triangles[static_cast<std::size_t>(y)]) {
+              if (reaches_column(g, t, x)) subset.push_back(t);
             }
           }
-          std::swap(values, finer);
-          n = m;
+          refine(x, first_row + y, n);
+          n *= 3;
           estimate = nested_grid_estimate(values, n);
         }
         image.pixel_samples[pixel] = static_cast<double>(values.size());
