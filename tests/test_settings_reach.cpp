@@ -147,6 +147,7 @@ std::vector<Row> reach_rows() {
       changes("render.pixel_tolerance", 0.05, kPixels),
       changes("render.max_samples_per_pixel", 9, kPixels,
               ctx(R"({"render": {"pixel_tolerance": 1e-3}})")),
+      changes("render.footprint_filtering", true, kPixels),
       {"render.tone_key", 0.3, json::object(), Effect::preview},
       {"render.tone_white", 2.0, json::object(), Effect::preview},
   };

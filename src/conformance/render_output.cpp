@@ -327,6 +327,7 @@ std::string sampling_text(const RenderJob& job) {
     text += " refined to a tolerance of " + format_number(job.pixel_tolerance) + " up to " +
             std::to_string(n * n);
   }
+  if (job.footprint_filtering) text += ", footprint-filtered";
   return text;
 }
 
@@ -367,6 +368,7 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
   const std::string image = " (" + area + ")";
   return {
       {{kWaveGridsItem, wave_grid_bytes(scene.waves)},
+       {kFootprintFilterItem, im.footprint_filtering ? footprint_filter_bytes(scene.waves) : 0.0},
        {"projected grid (grid.columns x grid.rows)", vertices * vertex_bytes},
        {"sample fragments (" + area + " x render.samples_per_pixel)", samples * sizeof(Fragment)},
        {"pixel buffers" + image, pixels * pixel_bytes(options.aov, adaptive(scene))},

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -15,6 +16,7 @@
 #include "core/math.h"
 #include "core/memory.h"
 #include "core/parallel.h"
+#include "raster/footprint.h"
 #include "spectrum/moments.h"
 #include "waves/fft.h"
 
@@ -37,12 +39,16 @@ FrameFields frame_fields(const RenderJob& job) {
   return f;
 }
 
-PointFields fields_at(const RenderJob& job, const FrameFields& f, glm::dvec2 x0) {
-  return combine_shading_at(*job.ocean, f.grids, f.evolved, x0.x, x0.y, job.shading.interpolation,
-                            job.shading.normals);
+// The footprint filter of the job's frame, or none (render.footprint_filtering off).
+std::optional<FootprintFilter> frame_filter(const RenderJob& job) {
+  if (!job.footprint_filtering) return std::nullopt;
+  return make_footprint_filter(*job.ocean, job.time, job.shading.interpolation, job.shading.normals,
+                               job.threads);
 }
 
-Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double bound) {
+// The vertices read the waves filtered to their grid cell when filtering.
+Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double bound,
+                        const std::optional<FootprintFilter>& filter) {
   Geometry g;
   ProjectedGridSettings settings = job.grid;
   settings.displacement_bound = bound;
@@ -56,8 +62,12 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
       const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
                             static_cast<std::size_t>(i);
       const glm::dvec2 x0 = g.grid.base[k];
-      const DisplacedPoint p = displaced_point(*job.ocean, fields.grids, fields.evolved, x0.x, x0.y,
-                                               job.shading.interpolation, job.shading.normals);
+      const DisplacedPoint p =
+          filter ? filtered_displaced_point(*job.ocean, fields.grids, fields.evolved, *filter, x0.x,
+                                            x0.y, grid_vertex_footprint(g.grid, i, j),
+                                            job.shading.interpolation, job.shading.normals)
+                 : displaced_point(*job.ocean, fields.grids, fields.evolved, x0.x, x0.y,
+                                   job.shading.interpolation, job.shading.normals);
       g.world[k] = {p.x, p.height, p.z};
       const glm::dvec3 s = project(job.camera, g.world[k]);
       g.screen[k] = {s.x, s.y, s.z};
@@ -67,9 +77,12 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
   return g;
 }
 
-SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const Geometry& g,
-                         const Fragment& f, const glm::dvec3& ray, const FrameLighting& light,
-                         const SlopeVariance& unresolved) {
+// One sample of a grid with `samples_per_axis` samples per pixel axis.
+SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm::dvec3& ray,
+                         int samples_per_axis) {
+  const RenderJob& job = frame.job;
+  const Geometry& g = frame.geometry;
+  const FrameLighting& light = frame.light;
   SampleProbe p;
   const ShadingSettings& sh = job.shading;
   if (f.triangle < 0) {
@@ -89,7 +102,28 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
     p.x0 += f.weights[v] * g.grid.base[t[v]];
     p.position += f.weights[v] * g.world[t[v]];
   }
-  p.fields = fields_at(job, fields, p.x0);
+  p.roughness = frame.unresolved;
+  const Ocean& ocean = *job.ocean;
+  if (frame.filter) {
+    // The sample's cell (1/S pixel) on the sea plane: the waves read filtered to it, and the
+    // slope variance under it that the read normal lacks added to σ² (footprint_filter.h).
+    std::array<ScreenVertex, 3> screen{};
+    std::array<glm::dvec2, 3> base{};
+    for (std::size_t v = 0; v < 3; ++v) {
+      screen[v] = g.screen[t[v]];
+      base[v] = g.grid.base[t[v]];
+    }
+    p.footprint = sample_footprint(base_derivatives(screen, base, f.weights),
+                                   1.0 / static_cast<double>(samples_per_axis));
+    p.fields = filtered_fields_at(ocean, frame.fields.grids, frame.fields.evolved, *frame.filter,
+                                  p.x0.x, p.x0.y, p.footprint, sh.interpolation, sh.normals);
+    const SlopeVariance v = footprint_slope_variance(*frame.filter, p.footprint);
+    p.roughness.upwind += v.upwind;
+    p.roughness.crosswind += v.crosswind;
+  } else {
+    p.fields = combine_shading_at(ocean, frame.fields.grids, frame.fields.evolved, p.x0.x, p.x0.y,
+                                  sh.interpolation, sh.normals);
+  }
   p.normal = p.fields.normal;  // shading.normals (waves/surface.h)
   p.view = to_vec3(glm::normalize(job.camera.position - p.position));
   // The geometry faces the camera but the shading normal (from waves finer than the grid) may
@@ -101,9 +135,9 @@ SampleProbe shade_sample(const RenderJob& job, const FrameFields& fields, const 
     for (std::size_t c = 0; c < 3; ++c) n[c] = p.normal[c] + (kMinimumCosView - vn) * p.view[c];
     p.normal = normalize(n);
   }
-  const SurfaceFrame frame = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
+  const SurfaceFrame surface = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   p.lighting =
-      lighting_terms(sh, job.sky, light, p.view, frame, unresolved, job.estimate_fast_error);
+      lighting_terms(sh, job.sky, light, p.view, surface, p.roughness, job.estimate_fast_error);
   const LightingTerms& l = p.lighting;
   for (std::size_t c = 0; c < 3; ++c) {
     p.radiance[c] = l.sun[c] + l.sky[c] + l.sea[c];
@@ -371,9 +405,10 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
   frame.job = job;
   frame.unresolved = unresolved;
   frame.fields = frame_fields(job);
+  frame.filter = frame_filter(job);
   clock.lap(&RenderTimes::synthesis);
   frame.displacement_bound = height_bound(*job.ocean);
-  frame.geometry = build_geometry(job, frame.fields, frame.displacement_bound);
+  frame.geometry = build_geometry(job, frame.fields, frame.displacement_bound, frame.filter);
   clock.lap(&RenderTimes::grid);
   frame.light = frame_lighting(job.sky, job.shading);
   return frame;
@@ -394,9 +429,7 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
                        " rows of the image");
   const ReferenceFpEnvironment fp;
   StageClock clock(times);
-  const FrameFields& fields = frame.fields;
   const Geometry& g = frame.geometry;
-  const FrameLighting& light = frame.light;
   const SlopeVariance& unresolved = frame.unresolved;
   RenderedImage image;
   image.width = job.camera.width;
@@ -447,7 +480,7 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
     const auto shade = [&](const Fragment& f, const SampleGrid& samples, int row, int column) {
       const glm::dvec3 ray =
           ray_direction(job.camera, samples.sample_x(column), samples.sample_y(row));
-      const SampleProbe p = shade_sample(job, fields, g, f, ray, light, unresolved);
+      const SampleProbe p = shade_sample(frame, f, ray, samples.samples_per_axis);
       if (!p.lighting.converged) ++row_unconverged;
       row_evaluations += p.lighting.evaluations;
       return sample_value(p);
@@ -547,7 +580,7 @@ Vec3 resolve_pixel(const std::vector<SampleProbe>& samples) {
 SurfaceMesh surface_mesh(const RenderJob& job) {
   const ReferenceFpEnvironment fp;
   const FrameFields fields = frame_fields(job);
-  Geometry g = build_geometry(job, fields, height_bound(*job.ocean));
+  Geometry g = build_geometry(job, fields, height_bound(*job.ocean), frame_filter(job));
   return {std::move(g.grid), std::move(g.world), std::move(g.triangles)};
 }
 
@@ -621,8 +654,7 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
           fragments[static_cast<std::size_t>(b) * static_cast<std::size_t>(grid.columns()) +
                     static_cast<std::size_t>(column)];
       const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-      SampleProbe p =
-          shade_sample(job, frame.fields, frame.geometry, f, ray, frame.light, unresolved);
+      SampleProbe p = shade_sample(frame, f, ray, s);
       p.image_x = grid.sample_x(column);
       p.image_y = grid.sample_y(row);
       out.push_back(p);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "raster/rasterizer.h"
 #include "shading/lighting_terms.h"
 #include "spectrum/moments.h"
+#include "waves/footprint_filter.h"
 #include "waves/ocean.h"
 #include "waves/slope_budget.h"
 
@@ -53,6 +55,11 @@ struct RenderJob {
   // `render --tile`).
   int first_row = 0;
   int last_row = -1;
+  // Footprint filtering (`render.footprint_filtering`, waves/footprint_filter.h): each sample
+  // reads the waves filtered to its cell's footprint on the sea (1/S pixel through the
+  // projected grid's screen-space derivatives) with the slope variance under it added to σ²,
+  // and each grid vertex the waves filtered to its grid cell.
+  bool footprint_filtering = false;
   // Fast accuracy only: also compute the reference lighting of every sample, so that the
   // lighting error is |fast − reference| + the reference's estimate (reference accuracy always
   // reports its estimate).
@@ -164,6 +171,7 @@ struct RenderFrame {
   FrameFields fields;
   FrameGeometry geometry;
   FrameLighting light;
+  std::optional<FootprintFilter> filter;  // RenderJob::footprint_filtering
 };
 RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
                           RenderTimes* times = nullptr);
@@ -195,7 +203,9 @@ struct SampleProbe {
   PointFields fields;
   Vec3 normal{};
   Vec3 view{};
-  LightingTerms lighting;  // sun, sky, sea, F̄ and their estimated errors
+  SlopeVariance roughness;  // the BRDF's σ²: the unresolved one (+ the footprint's when filtering)
+  Footprint footprint;      // the sample's footprint on the sea (when filtering) [m²]
+  LightingTerms lighting;   // sun, sky, sea, F̄ and their estimated errors
   Vec3 foam{}, radiance{};
   double whitecap_coverage = 0.0;
   Vec3 lighting_error{};  // of `radiance` (see RenderedImage::lighting_error)

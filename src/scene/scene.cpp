@@ -89,6 +89,7 @@ const std::vector<std::string>& scene_key_paths() {
       "render.samples_per_pixel",
       "render.pixel_tolerance",
       "render.max_samples_per_pixel",
+      "render.footprint_filtering",
       "render.tone_key",
       "render.tone_white",
   };
@@ -580,6 +581,7 @@ void parse_rendering(const Section& top, Scene& scene) {
   }
   im.samples_per_axis = axis;
   parse_adaptive_sampling(render, im);
+  im.footprint_filtering = render.boolean("footprint_filtering", false);
   im.tone_key = render.number("tone_key", im.tone_key, 1e-3, 1.0);
   im.tone_white = render.number("tone_white", im.tone_white, 0.0, 1e30);
   try {
@@ -842,6 +844,7 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) 
   job.samples_per_axis = scene.image.samples_per_axis;
   job.pixel_tolerance = scene.image.pixel_tolerance;
   job.max_refinements = scene.image.max_refinements;
+  job.footprint_filtering = scene.image.footprint_filtering;
   job.threads = threads;
   return job;
 }

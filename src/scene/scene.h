@@ -51,8 +51,9 @@ struct ImageSettings {
   // Adaptive sampling (RenderJob::pixel_tolerance, max_refinements); 0: the fixed S×S grid.
   double pixel_tolerance = 0.0;
   int max_refinements = 0;
-  double tone_key = 0.18;   // Reinhard key a for the PNG preview
-  double tone_white = 0.0;  // L_white for the preview; 0: the largest scaled luminance
+  bool footprint_filtering = false;  // RenderJob::footprint_filtering
+  double tone_key = 0.18;            // Reinhard key a for the PNG preview
+  double tone_white = 0.0;           // L_white for the preview; 0: the largest scaled luminance
 };
 
 // A key present in a scene file that does nothing for this scene (pbrt-v4's ReportUnused): e.g.
