@@ -320,6 +320,17 @@ awk -v a="$(share "$tmp/plain.out")" -v b="$(share "$tmp/out")" 'BEGIN { exit !(
   fail "compare --converged did not lower the failing share: $(share "$tmp/plain.out") -> $(share "$tmp/out")"
 grep -q '+pixel_error.R' "$tmp/out" || fail "compare --converged does not show the golden's error layers"
 expect 2 'needs the golden.s pixel_error.[RGB]' compare "$tmp/cand4.exr" "$tmp/cand4.exr" --converged
+# The converged golden of the suite carries its error layers: a 4-spp render of its scene (no
+# refinement) is compared with --converged, not refused.
+sed 's/, "pixel_tolerance": 0.01//' "$source_dir/reference/scenes/golden/default_converged_fast.json" \
+  >"$tmp/dcf4.json"
+grep -q pixel_tolerance "$tmp/dcf4.json" && fail "dcf4.json still adaptive"
+"$bin" render "$tmp/dcf4.json" -o "$tmp/dcf4.exr" --threads 2 >/dev/null
+"$bin" compare "$tmp/dcf4.exr" "$source_dir/reference/golden/default_converged_fast.exr" \
+  --channels R,G,B --rel 0.05 --converged >"$tmp/out" || [ $? -eq 1 ] ||
+  fail "compare --converged refused the converged golden: $(cat "$tmp/out")"
+checks=$((checks + 1))
+grep -q '+pixel_error.R' "$tmp/out" || fail "the converged golden's pixel_error was not used"
 sed 's/"max_samples_per_pixel": 36/"max_samples_per_pixel": 100/' "$tmp/adaptive.json" >"$tmp/bad.json"
 expect 2 'render.max_samples_per_pixel.*one of 36, 324' render "$tmp/bad.json" -o "$tmp/x.exr"
 # Fast lighting: its error is estimated (a reference render as well) only with --lighting-error.

@@ -45,6 +45,11 @@ GoldenReport run(const std::filesystem::path& root, const GoldenOptions& options
     RenderOutputOptions render_options;
     render_options.threads = options.threads;
     render_options.log = options.log;
+    // A converged golden (render.pixel_tolerance) carries its error layers, pixel_error and
+    // lighting_error, for `compare --converged`, and the samples per pixel (the pixel hashes
+    // cover R, G, B only, so the layers change no hash).
+    const bool converged = scene.image.pixel_tolerance > 0.0;
+    render_options.aov = converged;
     const RenderedScene r = render_scene(scene, render_options);
     const Ocean ocean = realize_ocean(scene.waves, options.threads);
     const FieldsImage fields = fields_image(scene, ocean, options.threads, options.log);
@@ -75,6 +80,16 @@ GoldenReport run(const std::filesystem::path& root, const GoldenOptions& options
       const LightingErrorSummary e = summarize_lighting_error(r.image);
       if (e.estimated) entry["lighting_error_max_relative"] = e.max_relative;
       entry["unconverged_samples"] = r.image.unconverged_samples;
+      if (converged) {
+        const PixelErrorSummary p = summarize_pixel_error(r.image);
+        entry["pixel_tolerance"] = scene.image.pixel_tolerance;
+        entry["max_samples_per_pixel"] = max_samples_per_pixel(scene.image);
+        entry["pixel_samples_mean"] = p.mean_samples;
+        entry["capped_pixels"] = p.capped_pixels;
+        entry["pixel_error_p50_relative"] = p.p50_relative;
+        entry["pixel_error_p99_relative"] = p.p99_relative;
+        entry["pixel_error_max_relative"] = p.max_relative;
+      }
       result.status = result.same ? "unchanged" : "updated";
     } else {
       result.status = result.same ? "identical" : "MISMATCH";
