@@ -234,19 +234,8 @@ TEST_CASE("adaptive renders: the same bits for any thread count, band and tile")
 TEST_CASE("converged pixels: the default scene within its reported error of 1024 spp") {
   // The default scene (reference/scenes/default.json) at 48×27 with fast lighting: the pixel
   // integral is compared, so the lighting integrals are the same in both renders.
-  json s = json::parse(R"({
-    "seed": 1,
-    "waves": {
-      "spectrum": {"model": "jonswap", "wind_speed": 10, "fetch": 100000, "wind_direction_deg": 80},
-      "spreading": {"model": "hasselmann"},
-      "cascades": {"largest": 800, "count": 4, "factor": "golden-small"},
-      "resolution": 256, "low_resolution": 128, "choppiness": -0.8},
-    "camera": {"position": [0, 6, 0], "look_at": [0, 2, 100], "up": [0, 1, 0],
-               "vertical_fov_deg": 50},
-    "grid": {"columns": 512, "rows": 512, "margin": 0.15},
-    "atmosphere": {"sun_zenith_deg": 78, "sun_azimuth_deg": 85, "turbidity": 2.5},
-    "shading": {"whitecaps": true, "accuracy": "fast", "interpolation": "bicubic"},
-    "render": {"width": 48, "height": 27, "samples_per_pixel": 4, "pixel_tolerance": 0.01}})");
+  json s = testing::default_scene_reduced_json(4);
+  s["render"]["pixel_tolerance"] = 0.01;
   const RenderedScene converged = render_with(parse_scene(s), 2);
   s["render"].erase("pixel_tolerance");
   s["render"]["samples_per_pixel"] = 1024;

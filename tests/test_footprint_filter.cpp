@@ -22,6 +22,8 @@
 #include "waves/ocean.h"
 #include "waves/slope_budget.h"
 
+#include "glitter_scene.h"
+
 using namespace oceanref;
 using nlohmann::json;
 
@@ -57,20 +59,7 @@ double filtered_height(const PatternSpectrum& p, double time, double radius, dou
 }
 
 json default_scene_reduced(int spp, bool filtering) {
-  json s = json::parse(R"({
-    "seed": 1,
-    "waves": {
-      "spectrum": {"model": "jonswap", "wind_speed": 10, "fetch": 100000, "wind_direction_deg": 80},
-      "spreading": {"model": "hasselmann"},
-      "cascades": {"largest": 800, "count": 4, "factor": "golden-small"},
-      "resolution": 256, "low_resolution": 128, "choppiness": -0.8},
-    "camera": {"position": [0, 6, 0], "look_at": [0, 2, 100], "up": [0, 1, 0],
-               "vertical_fov_deg": 50},
-    "grid": {"columns": 512, "rows": 512, "margin": 0.15},
-    "atmosphere": {"sun_zenith_deg": 78, "sun_azimuth_deg": 85, "turbidity": 2.5},
-    "shading": {"whitecaps": true, "accuracy": "fast", "interpolation": "bicubic"},
-    "render": {"width": 48, "height": 27}})");
-  s["render"]["samples_per_pixel"] = spp;
+  json s = testing::default_scene_reduced_json(spp);
   if (filtering) s["render"]["footprint_filtering"] = true;
   return s;
 }
