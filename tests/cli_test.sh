@@ -339,6 +339,32 @@ grep -q '^lighting_error' "$tmp/out" && fail "a fast render estimated its lighti
 expect 0 '^lighting_error_median_relative,[0-9]' render "$tmp/render.json" -o "$tmp/le.exr" \
   --lighting-error --threads 2
 
+# Same samples: --samples writes every sample (S× the resolution), each pixel their mean; the
+# image is the same bits with it; refused with adaptive sampling, --tile, or the output's path.
+expect 0 '^pixel_sha256' render "$tmp/render.json" -o "$tmp/smp.exr" --samples "$tmp/smp_s.exr" \
+  --threads 2
+[ "$(grep "^pixel_sha256" "$tmp/out")" = "$(grep "^pixel_sha256" <<<"$hash1")" ] ||
+  fail "--samples changed the image"
+checks=$((checks + 1))
+/usr/bin/python3 - "$tmp/smp.exr" "$tmp/smp_s.exr" <<'PY' || fail "--samples: not S x S samples per pixel whose mean is the pixel"
+import sys, numpy as np, OpenImageIO as oiio
+def read(path):
+    b = oiio.ImageBuf(path)
+    s = b.spec()
+    return b.get_pixels(oiio.FLOAT).reshape(s.height, s.width, -1).astype(float)
+image, samples = read(sys.argv[1])[..., :3], read(sys.argv[2])
+h, w, _ = image.shape
+assert samples.shape == (2 * h, 2 * w, 3), samples.shape
+mean = samples.reshape(h, 2, w, 2, 3).mean(axis=(1, 3))
+# float32 samples and pixels of double means: a few float32 ulps apart.
+sys.exit(0 if np.all(np.abs(mean - image) <= 1e-6 * np.abs(image) + 1e-30) else 1)
+PY
+expect 2 '--samples.*not with render.pixel_tolerance' render "$tmp/adaptive.json" -o "$tmp/x.exr" \
+  --samples "$tmp/xs.exr"
+expect 2 '--samples.*not with --tile' render "$tmp/render.json" -o "$tmp/x.piece" \
+  --samples "$tmp/xs.exr" --tile 0/2
+expect 2 'same file' render "$tmp/render.json" -o "$tmp/x.exr" --samples "$tmp/x.exr"
+
 # The preview's tone-mapping keys reach the PNG (and only the PNG: the pixel hash is the same).
 for key in 'tone_key": 0.5' 'tone_white": 3'; do
   sed "s/\"samples_per_pixel\": 4}/\"samples_per_pixel\": 4, \"${key}}/" "$tmp/render.json" >"$tmp/tone.json"

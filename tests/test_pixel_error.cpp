@@ -3,7 +3,8 @@
 // summarised (p50, p99, max relative) in the report and the EXR header. Checked against the
 // formula by hand, against a converged render of the same scene (the estimate must cover the
 // distance to it for most pixels without being uselessly large), and in its summary's
-// quantiles against the sorted values.
+// quantiles against the sorted values. And the "same samples" export (point 4, `render
+// --samples`): every sample of the fixed grid, each pixel their mean.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -149,4 +150,41 @@ TEST_CASE("the pixel error reaches the EXR: its layer and its header's summary")
       REQUIRE(channel->values[i] == static_cast<float>(whole.image.pixel_error[i][c]));
     }
   }
+}
+
+TEST_CASE("same samples: every sample kept, each pixel their mean, each sample probe's value") {
+  // `render --samples` (RenderJob::keep_samples): the band's S×S grid row-major; a pixel's
+  // radiance is its samples' mean in row-major order (the same bits), and a sample is the one
+  // `probe` shades at that position (an independent path: its own raster pass of the pixel).
+  const Scene scene = glitter_scene(9);
+  const Ocean ocean = realize_ocean(scene.waves, 2);
+  RenderJob job = scene_render_job(scene, ocean, 2);
+  const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
+  job.keep_samples = true;
+  const RenderedImage image = render(job, unresolved);
+  const int s = 3, columns = 24 * s;
+  REQUIRE(image.sample_radiance.size() == static_cast<std::size_t>(12 * s * columns));
+  for (int y = 0; y < 12; ++y) {
+    for (int x = 0; x < 24; ++x) {
+      Vec3 mean{};
+      for (int b = 0; b < s; ++b) {
+        for (int a = 0; a < s; ++a) {
+          const Vec3& v =
+              image.sample_radiance[static_cast<std::size_t>((y * s + b) * columns + x * s + a)];
+          for (std::size_t c = 0; c < 3; ++c) mean[c] += (1.0 / 9.0) * v[c];
+        }
+      }
+      CHECK(mean == image.radiance[static_cast<std::size_t>(y * 24 + x)]);
+    }
+  }
+  const std::vector<SampleProbe> probe = probe_pixel(job, unresolved, 17, 8);
+  for (int b = 0; b < s; ++b) {
+    for (int a = 0; a < s; ++a) {
+      CHECK(probe[static_cast<std::size_t>(b * s + a)].radiance ==
+            image.sample_radiance[static_cast<std::size_t>((8 * s + b) * columns + 17 * s + a)]);
+    }
+  }
+  // Without keep_samples nothing is kept.
+  job.keep_samples = false;
+  CHECK(render(job, unresolved).sample_radiance.empty());
 }

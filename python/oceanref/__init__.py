@@ -136,24 +136,29 @@ def fields_sha256(values):
     return _hash_fields(values, "<f4"), _hash_fields(values, "<f8")
 
 
-def render(scene, threads=0, spp=None, aov=False, lighting_error=False, max_memory=8 * 2**30):
+def render(scene, threads=0, spp=None, aov=False, lighting_error=False, samples=False,
+           max_memory=8 * 2**30):
     """The reference image of a scene: float64 array (height, width, 3) of linear radiance
     [cd/m² per linear sRGB channel, D65], the values behind ``oceanref render -o``'s R, G, B
     (equal bit for bit after float32 rounding; pixel_sha256 gives the EXR's hash).
 
     spp: samples per pixel, a square number in [1, 1024] (default: the scene's). threads: 0 =
-    every core; the image is identical for any count. With aov=True returns a dict: radiance,
-    sun, sky, sea, foam, normal, x0, lighting_error, pixel_error (H, W, 3), depth [m], coverage
-    (H, W), unconverged_samples, integrand_evaluations, unresolved_slope_variance (upwind,
-    crosswind), and with adaptive sampling (render.pixel_tolerance) pixel_samples (H, W) and
+    every core; the image is identical for any count. With aov=True or samples=True returns a
+    dict: radiance, unconverged_samples, integrand_evaluations, unresolved_slope_variance
+    (upwind, crosswind); with aov=True also sun, sky, sea, foam, normal, x0, lighting_error,
+    pixel_error (H, W, 3), depth [m], coverage (H, W); with adaptive sampling
+    (render.pixel_tolerance) pixel_samples (H, W) and
     capped_pixels. lighting_error=True: for shading.accuracy "fast", also the reference
     lighting of every sample, so that lighting_error is the fast mode's error (as ``oceanref
-    render --lighting-error``; costs a reference render). max_memory: bytes; a render whose
+    render --lighting-error``; costs a reference render). samples=True: the dict also holds
+    samples (H·S, W·S, 3), every sample of the fixed S×S grid (sample (c, r) at image position
+    ((c + ½)/S, (r + ½)/S); each pixel the mean of its S×S samples), as ``oceanref render
+    --samples``; not with render.pixel_tolerance. max_memory: bytes; a render whose
     estimated buffers need more raises RuntimeError (as ``oceanref render --max-memory``).
     """
     result = _core._render(_scene(scene), threads, spp, aov, bool(lighting_error),
-                           float(max_memory))
-    return result if aov else result["radiance"]
+                           bool(samples), float(max_memory))
+    return result if aov or samples else result["radiance"]
 
 
 def pixel_sha256(image):

@@ -109,7 +109,7 @@ py::array_t<double> scalar_image(const std::vector<double>& v, int width, int he
 }
 
 py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp, bool aov,
-                      bool lighting_error, double max_memory) {
+                      bool lighting_error, bool samples, double max_memory) {
   const int threads = resolve_threads(threads_arg);
   Scene scene = s.scene;
   if (spp) {
@@ -126,8 +126,14 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
                                           shortest_number(kMaxMaxMemory) + "] bytes, got " +
                                           shortest_number(max_memory));
   }
+  if (samples && scene.image.pixel_tolerance > 0.0) {
+    throw ArgumentError("samples",
+                        "the fixed grid's samples only: not with render.pixel_tolerance "
+                        "(adaptive sampling)");
+  }
   RenderOutputOptions options;
   options.aov = aov;
+  options.keep_samples = samples;
   require_within(render_memory_estimate(scene, options), max_memory, "max_memory=");
   RenderedImage image;
   {
@@ -136,6 +142,7 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
     RenderJob job = scene_render_job(scene, ocean, threads);
     job.estimate_fast_error = lighting_error;  // as `oceanref render --lighting-error`
     job.layers = aov;
+    job.keep_samples = samples;  // as `oceanref render --samples`
     const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
     image = render(job, unresolved);
   }
@@ -148,6 +155,10 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
   if (!image.pixel_samples.empty()) {
     d["pixel_samples"] = scalar_image(image.pixel_samples, w, h);
     d["capped_pixels"] = image.capped_pixels;
+  }
+  if (samples) {
+    const int axis = scene.image.samples_per_axis;
+    d["samples"] = image_array(image.sample_radiance, w * axis, h * axis);
   }
   d["unresolved_slope_variance"] =
       py::make_tuple(image.unresolved.upwind, image.unresolved.crosswind);
@@ -247,7 +258,7 @@ void bind_scene(py::module_& m) {
       py::arg("scene"), py::arg("time") = py::none(), py::arg("threads") = 0);
   m.def("_render", &render_scene, py::arg("scene"), py::arg("threads") = 0,
         py::arg("spp") = py::none(), py::arg("aov") = false, py::arg("lighting_error") = false,
-        py::arg("max_memory") = kDefaultMaxMemory);
+        py::arg("samples") = false, py::arg("max_memory") = kDefaultMaxMemory);
   m.def("_read_exr", &read_exr_file, py::arg("path"));
 }
 

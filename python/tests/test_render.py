@@ -75,6 +75,16 @@ def test_spp_and_aov(tiny):
     assert not a["lighting_error"].any()
     d = oceanref.render(tiny, threads=2, aov=True, lighting_error=True)
     assert (d["lighting_error"] > 0).any()
+    # Same samples: every sample of the 2×2 grid, each pixel their mean (row-major, 1/4 each).
+    e = oceanref.render(tiny, threads=2, spp=4, samples=True)
+    assert e["samples"].shape == (48, 80, 3) and "sun" not in e
+    s = e["samples"]
+    mean = 0.25 * s[0::2, 0::2] + 0.25 * s[0::2, 1::2] + 0.25 * s[1::2, 0::2]
+    mean = mean + 0.25 * s[1::2, 1::2]
+    np.testing.assert_array_equal(mean, e["radiance"])
+    np.testing.assert_array_equal(e["radiance"], b["radiance"])
+    with pytest.raises(ValueError, match=r"^samples: the fixed grid's samples only"):
+        oceanref.render(adaptive, samples=True)
 
 
 def test_max_memory_refuses_a_render_before_it_starts(tiny):

@@ -139,7 +139,7 @@ std::function<void(double)> progress_bar() {
 
 std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   struct Flags {
-    std::string scene, output, png, max_memory, tile;
+    std::string scene, output, png, max_memory, tile, samples;
     int threads = 0;
     int spp = 0;
     bool aov = false;
@@ -169,19 +169,29 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
                 "shading.accuracy fast: also compute the reference lighting of every sample, so "
                 "that the report and lighting_error give the fast mode's error (|fast - "
                 "reference| + the reference's estimate; costs a reference render)");
+  cmd->add_option("--samples", f->samples,
+                  "SAMPLES.exr: also every sample's R, G, B, at S times the image's resolution "
+                  "(sample (c, r) at image position ((c + 0.5)/S, (r + 0.5)/S); a pixel is the "
+                  "mean of its S x S samples): the fixed grid for a backend that replicates it "
+                  "(README, 'Same samples or converged'); not with render.pixel_tolerance or "
+                  "--tile");
   cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
   cmd->add_option("--tile", f->tile,
                   "I/N: render only tile I of N (pixel rows I*H/N to (I+1)*H/N - 1, 0 <= I < N "
                   "<= H) and write it to --output as a render piece, for `oceanref merge` "
                   "(docs/DISTRIBUTED.md); not with --png");
   return [f](std::ostream& out) {
-    check_output_paths({{"--output", f->output}, {"--png", f->png}}, {f->scene});
+    check_output_paths({{"--output", f->output}, {"--png", f->png}, {"--samples", f->samples}},
+                       {f->scene});
     RenderOutputOptions options;
     options.threads = resolve_threads(f->threads);
     options.max_memory = max_memory_flag(f->max_memory);
     std::tie(options.tile, options.tiles) = parse_tile(f->tile);
     if (!f->tile.empty() && !f->png.empty()) {
       throw UsageError("--png", "not with --tile (merge the pieces, then ask merge for --png)");
+    }
+    if (!f->tile.empty() && !f->samples.empty()) {
+      throw UsageError("--samples", "not with --tile (render the whole image)");
     }
     const Scene scene = load_scene(f->scene);
     if (options.tiles > scene.image.height) {
@@ -205,8 +215,15 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       out << "integrand_evaluations," << piece.band.integrand_evaluations << '\n';
       return;
     }
+    if (!f->samples.empty() && scene.image.pixel_tolerance > 0.0) {
+      throw UsageError("--samples",
+                       "the fixed grid's samples only: not with render.pixel_tolerance (adaptive "
+                       "sampling)");
+    }
     options.streamed = true;
-    print_report(out, render_scene_to_files(scene, options, f->output, f->png), scene, options);
+    options.keep_samples = !f->samples.empty();
+    print_report(out, render_scene_to_files(scene, options, f->output, f->png, f->samples), scene,
+                 options);
   };
 }
 

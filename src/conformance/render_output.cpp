@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "conformance/provenance.h"
@@ -265,6 +266,25 @@ ExrImage render_exr_header(const Scene& scene, const SlopeVariance& unresolved, 
       format_number(unresolved.upwind) + "," + format_number(unresolved.crosswind);
   return exr;
 }
+
+// The per-sample file's layout (`render --samples`): the image's header at S× its resolution,
+// R, G, B of every sample, without the image's hashes and error summary.
+ExrImage samples_exr_header(const Scene& scene, const SlopeVariance& unresolved, int s) {
+  ExrImage exr = render_exr_header(scene, unresolved, false, "", "", "");
+  exr.width *= s;
+  exr.height *= s;
+  exr.channels = {ExrChannel{"R", 1, {}}, ExrChannel{"G", 1, {}}, ExrChannel{"B", 1, {}}};
+  for (const char* key :
+       {"oceanref.pixel_sha256", "oceanref.radiance_f64_sha256", "oceanref.pixel_error"}) {
+    exr.attributes.erase(key);
+  }
+  exr.attributes["oceanref.samples"] =
+      "S = " + std::to_string(s) +
+      " samples per pixel axis: sample (c, r) sits at image position ((c + 0.5)/S, (r + 0.5)/S) "
+      "pixels; pixel (i, j) of the image is the mean of samples (i S + a, j S + b), a, b = 0 .. "
+      "S-1, each weighted 1/S^2 and summed in row-major order in double precision";
+  return exr;
+}
 }  // namespace
 
 std::string pixel_sha256(const std::vector<ExrChannel>& rgb) {
@@ -316,6 +336,8 @@ double channel_count(bool aov, bool adaptive) {
   return aov ? (adaptive ? 30 : 29) : 3;
 }
 constexpr double kHistogramBytes = double(std::size_t{1} << 19) * sizeof(std::uint64_t);
+// A kept sample (`render --samples`): its radiance, and R, G, B as written.
+constexpr double kSampleBytes = sizeof(Vec3) + 3 * sizeof(float);
 
 // "4 spp", or with adaptive sampling "4 spp refined to 1% up to 324".
 std::string sampling_text(const RenderJob& job) {
@@ -339,10 +361,12 @@ int samples_per_axis_of(const Scene& scene, const RenderOutputOptions& options) 
 int stream_band_rows(const Scene& scene, const RenderOutputOptions& options) {
   constexpr double kBandBytes = 256.0 * 1024 * 1024;
   const int axis = samples_per_axis_of(scene, options);
-  const double row_bytes = static_cast<double>(scene.image.width) *
-                           (axis * axis * static_cast<double>(sizeof(Fragment)) +
-                            pixel_bytes(options.aov, adaptive(scene)) +
-                            channel_count(options.aov, adaptive(scene)) * sizeof(float));
+  const double row_bytes =
+      static_cast<double>(scene.image.width) *
+      (axis * axis *
+           (static_cast<double>(sizeof(Fragment)) + (options.keep_samples ? kSampleBytes : 0.0)) +
+       pixel_bytes(options.aov, adaptive(scene)) +
+       channel_count(options.aov, adaptive(scene)) * sizeof(float));
   const double rows =
       options.band_rows > 0 ? options.band_rows : std::floor(kBandBytes / row_bytes);
   return static_cast<int>(std::clamp(rows, 1.0, static_cast<double>(scene.image.height)));
@@ -375,6 +399,8 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
        {"EXR channels" + image,
         pixels * channel_count(options.aov, adaptive(scene)) * sizeof(float)},
        {"error histograms (lighting, pixel)", 2 * kHistogramBytes},
+       {"per-sample radiance (--samples: " + area + " x render.samples_per_pixel)",
+        options.keep_samples ? samples * kSampleBytes : 0.0},
        {"adaptive refinement (render.max_samples_per_pixel per thread)",
         adaptive(scene) ? std::max(options.threads, 1) * refinement_bytes(axis, im.max_refinements)
                         : 0.0}}};
@@ -446,14 +472,23 @@ RenderReport report_of(const RenderedScene& rendered) {
 }
 
 RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions& options,
-                                   const std::string& exr_path, const std::string& png_path) {
+                                   const std::string& exr_path, const std::string& png_path,
+                                   const std::string& samples_path) {
   OCEANREF_EXPECTS(options.tiles == 1 && options.streamed,
                    "a streamed render of the whole image (options.streamed)");
+  OCEANREF_EXPECTS(samples_path.empty() == !options.keep_samples,
+                   "a samples file exactly when options.keep_samples");
+  if (options.keep_samples && adaptive(scene)) {
+    throw SceneError("render.pixel_tolerance",
+                     "the samples of the fixed grid are exported (--samples), not those of "
+                     "adaptive sampling: remove render.pixel_tolerance");
+  }
   require_within(render_memory_estimate(scene, options), options.max_memory,
                  "--max-memory (Python: max_memory=)");
   const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
   p->job.estimate_fast_error = options.fast_lighting_error;
   p->job.layers = options.aov;
+  p->job.keep_samples = options.keep_samples;
   const int height = p->scene.image.height;
   const int band = stream_band_rows(p->scene, options);
   note(options.log,
@@ -470,6 +505,11 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
                       {{"oceanref.pixel_sha256", 64},
                        {"oceanref.radiance_f64_sha256", 64},
                        {"oceanref.pixel_error", kPixelErrorAttributeLength}});
+  const int s = p->job.samples_per_axis;
+  std::optional<ExrRowWriter> samples;
+  if (options.keep_samples) {
+    samples.emplace(samples_path, samples_exr_header(p->scene, p->unresolved, s));
+  }
   for (int first = 0; first < height; first += band) {
     const int last = std::min(height, first + band);
     std::function<void(double)> progress;
@@ -485,7 +525,15 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
       values.push_back(std::move(c.values));
     }
     writer.write_rows(values, last - first);
+    if (samples) {
+      std::vector<std::vector<float>> rgb(3);
+      for (const Vec3& v : image.sample_radiance) {
+        for (std::size_t c = 0; c < 3; ++c) rgb[c].push_back(static_cast<float>(v[c]));
+      }
+      samples->write_rows(rgb, (last - first) * s);
+    }
   }
+  if (samples) samples->finish();
   const PreviewScale scale = preview_scale(tally, p->scene.image);
   RenderReport report = tally.report();
   writer.set_deferred("oceanref.pixel_sha256", report.pixel_sha256);

@@ -58,6 +58,8 @@ struct RenderOutputOptions {
   // counts one band (stream_band_rows), not the whole image.
   bool streamed = false;
   int band_rows = 0;  // streamed: rows per band; 0: stream_band_rows' choice (tests set it)
+  // render_scene_to_files: also write every sample's radiance (`render --samples`).
+  bool keep_samples = false;
 };
 
 // The pixel rows a streamed render holds at once: options.band_rows if set, else as many as fit
@@ -136,9 +138,13 @@ RenderReport report_of(const RenderedScene& rendered);
 // A scene rendered band by band straight to `exr_path` (the bytes render_scene's EXR would
 // have: its hashes are set in the header after the last band) and, when `png_path` is not
 // empty, the preview (a second pass reading the EXR back band by band). Memory: one band
-// (stream_band_rows) besides the frame's waves and grid, whatever the image size.
+// (stream_band_rows) besides the frame's waves and grid, whatever the image size. With
+// options.keep_samples, also every sample's R, G, B to `samples_path` (`render --samples`: an
+// EXR at S× the image's resolution, written band by band; the fixed grid only — a scene with
+// render.pixel_tolerance is a SceneError).
 RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions& options,
-                                   const std::string& exr_path, const std::string& png_path);
+                                   const std::string& exr_path, const std::string& png_path,
+                                   const std::string& samples_path = "");
 
 // The tone-mapped preview (Reinhard 2002 with the scene's key and white, sRGB transfer): 8-bit
 // RGB, row-major; write_preview_png writes it as a PNG. The key's log-average luminance and the

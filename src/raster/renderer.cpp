@@ -462,6 +462,11 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
     image.x0 = pixel_buffer("x0");
   }
   const bool adaptive = job.pixel_tolerance > 0.0;
+  OCEANREF_EXPECTS(!(adaptive && job.keep_samples),
+                   "the samples of the fixed grid are kept, not those of adaptive sampling");
+  if (job.keep_samples) {
+    image.sample_radiance = allocate_buffer<Vec3>(fragments.size(), "the per-sample radiance");
+  }
   if (adaptive) {
     image.pixel_samples = allocate_buffer<double>(pixels, "the per-pixel sample counts");
   }
@@ -522,10 +527,11 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
           const int band_row = y * s + b;
           const int row = first_row * s + band_row;  // of the image's sample grid
           const int column = x * s + a;
-          values.push_back(shade(fragments[static_cast<std::size_t>(band_row) *
-                                               static_cast<std::size_t>(grid.columns()) +
-                                           static_cast<std::size_t>(column)],
-                                 grid, row, column));
+          const std::size_t at =
+              static_cast<std::size_t>(band_row) * static_cast<std::size_t>(grid.columns()) +
+              static_cast<std::size_t>(column);
+          values.push_back(shade(fragments[at], grid, row, column));
+          if (job.keep_samples) image.sample_radiance[at] = values.back().radiance;
         }
       }
       PixelEstimate estimate = fixed_grid_estimate(values);

@@ -67,6 +67,9 @@ struct RenderJob {
   // Also fill the per-pixel layers sun, sky, sea, foam, depth, normal and x0 (`render --aov`);
   // without them the image holds radiance, coverage and lighting_error only.
   bool layers = false;
+  // Also keep every sample's radiance (RenderedImage::sample_radiance; `render --samples`):
+  // the fixed grid only, not with pixel_tolerance.
+  bool keep_samples = false;
   // Called with the finished share of image rows (0…1) now and then during shading, from any
   // worker thread; for progress display only.
   std::function<void(double)> progress;
@@ -97,6 +100,11 @@ struct RenderedImage {
   // Adaptive sampling only (RenderJob::pixel_tolerance > 0), else empty: the samples behind each
   // pixel ((S·3^r)² after r refinements).
   std::vector<double> pixel_samples;
+  // RenderJob::keep_samples only, else empty: the radiance of every sample of the band's S×S
+  // grid, row-major over its (height·S) × (width·S) samples (sample (c, r) of the band sits at
+  // image position ((c + ½)/S, first_row + (r + ½)/S)); each pixel's radiance is the mean of
+  // its S×S samples, 1/S² each, summed in row-major order.
+  std::vector<Vec3> sample_radiance;
   long capped_pixels = 0;        // adaptive pixels that reached the cap above the tolerance
   long unconverged_samples = 0;  // samples whose reference integrals missed the tolerance
   long integrand_evaluations = 0;
