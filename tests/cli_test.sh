@@ -365,6 +365,15 @@ expect 2 '--samples.*not with --tile' render "$tmp/render.json" -o "$tmp/x.piece
   --samples "$tmp/xs.exr" --tile 0/2
 expect 2 'same file' render "$tmp/render.json" -o "$tmp/x.exr" --samples "$tmp/x.exr"
 
+# The second renderer: the ray tracer renders the scene (its agreement with the rasterizer is
+# tests/test_tracer.cpp's); a renderer that does not exist and --tile are refused.
+expect 0 '^pixel_sha256,[0-9a-f]{64}$' render "$tmp/render.json" -o "$tmp/rt.exr" --renderer raytrace \
+  --threads 2
+expect 2 '--renderer: expected raster or raytrace' render "$tmp/render.json" -o "$tmp/x.exr" \
+  --renderer pathtrace
+expect 2 '--renderer.*not with --tile' render "$tmp/render.json" -o "$tmp/x.piece" \
+  --renderer raytrace --tile 0/2
+
 # The preview's tone-mapping keys reach the PNG (and only the PNG: the pixel hash is the same).
 for key in 'tone_key": 0.5' 'tone_white": 3'; do
   sed "s/\"samples_per_pixel\": 4}/\"samples_per_pixel\": 4, \"${key}}/" "$tmp/render.json" >"$tmp/tone.json"

@@ -25,12 +25,13 @@ declare -A below=(
   [waves]="spectrum core"
   [sky]="core"
   [shading]="sky waves spectrum core"
-  [raster]="shading sky waves spectrum core"
-  [scene]="raster shading sky waves spectrum core"
-  [io]="raster shading sky waves spectrum core"
-  [conformance]="scene io raster shading sky waves spectrum core"
+  [trace]="core"
+  [raster]="trace shading sky waves spectrum core"
+  [scene]="raster trace shading sky waves spectrum core"
+  [io]="raster trace shading sky waves spectrum core"
+  [conformance]="scene io raster trace shading sky waves spectrum core"
 )
-folders=(core spectrum waves sky shading raster scene io conformance)
+folders=(core spectrum waves sky shading trace raster scene io conformance)
 
 declare -A flags=()
 while IFS='|' read -r folder dirs; do

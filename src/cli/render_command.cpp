@@ -139,7 +139,7 @@ std::function<void(double)> progress_bar() {
 
 std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   struct Flags {
-    std::string scene, output, png, max_memory, tile, samples;
+    std::string scene, output, png, max_memory, tile, samples, renderer = "raster";
     int threads = 0;
     int spp = 0;
     bool aov = false;
@@ -175,6 +175,10 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
                   "mean of its S x S samples): the fixed grid for a backend that replicates it "
                   "(README, 'Same samples or converged'); not with render.pixel_tolerance or "
                   "--tile");
+  cmd->add_option("--renderer", f->renderer,
+                  "raster (the scanline rasterizer, default) or raytrace (Mastin's height-field "
+                  "ray tracer on the same displaced grid: the second renderer, to check the "
+                  "first's visibility; README, 'Two renderers'); not with --tile");
   cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
   cmd->add_option("--tile", f->tile,
                   "I/N: render only tile I of N (pixel rows I*H/N to (I+1)*H/N - 1, 0 <= I < N "
@@ -189,6 +193,10 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     std::tie(options.tile, options.tiles) = parse_tile(f->tile);
     if (!f->tile.empty() && !f->png.empty()) {
       throw UsageError("--png", "not with --tile (merge the pieces, then ask merge for --png)");
+    }
+    options.renderer = parse_choice<UsageError>(kRenderers, "--renderer", f->renderer);
+    if (!f->tile.empty() && options.renderer != Renderer::raster) {
+      throw UsageError("--renderer", "not with --tile (the pieces are rasterized)");
     }
     if (!f->tile.empty() && !f->samples.empty()) {
       throw UsageError("--samples", "not with --tile (render the whole image)");

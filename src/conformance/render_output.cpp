@@ -350,6 +350,7 @@ std::string sampling_text(const RenderJob& job) {
             std::to_string(n * n);
   }
   if (job.footprint_filtering) text += ", footprint-filtered";
+  if (job.renderer == Renderer::raytrace) text += ", ray traced";
   return text;
 }
 
@@ -421,6 +422,7 @@ RenderedImage render_rows(PreparedRender& p, const RenderOutputOptions& options)
   // The error layer of a fast render is its difference from the reference (computed as well).
   p.job.estimate_fast_error = options.fast_lighting_error;
   p.job.layers = options.aov;
+  p.job.renderer = options.renderer;
   p.job.first_row = first;
   p.job.last_row = last;
   return render(p.job, p.unresolved);
@@ -488,6 +490,7 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
   const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
   p->job.estimate_fast_error = options.fast_lighting_error;
   p->job.layers = options.aov;
+  p->job.renderer = options.renderer;
   p->job.keep_samples = options.keep_samples;
   const int height = p->scene.image.height;
   const int band = stream_band_rows(p->scene, options);

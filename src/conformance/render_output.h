@@ -60,6 +60,8 @@ struct RenderOutputOptions {
   int band_rows = 0;  // streamed: rows per band; 0: stream_band_rows' choice (tests set it)
   // render_scene_to_files: also write every sample's radiance (`render --samples`).
   bool keep_samples = false;
+  // What decides visibility (`render --renderer`): the rasterizer or the ray tracer.
+  Renderer renderer = Renderer::raster;
 };
 
 // The pixel rows a streamed render holds at once: options.band_rows if set, else as many as fit

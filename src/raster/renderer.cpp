@@ -39,6 +39,38 @@ FrameFields frame_fields(const RenderJob& job) {
   return f;
 }
 
+// The tracer's view of the frame's mesh.
+TraceGrid trace_view(const Geometry& g) {
+  return {g.grid.columns, g.grid.rows, &g.world, &g.triangles, &g.untraced};
+}
+
+// The fragments of sample rows [first_row, last_row), columns `window`, of `grid` by ray tracing
+// (Renderer::raytrace) into `out`, which holds rows from fragment_row on (as rasterize): each
+// sample's ray against the displaced grid, its nearest hit with the world-space weights (the
+// perspective-correct ones) and the view depth of the hit point.
+void trace_fragments(const RenderJob& job, const Geometry& g, const SampleGrid& grid, int first_row,
+                     int last_row, std::vector<Fragment>& out, int fragment_row,
+                     FragmentColumns window, int threads) {
+  if (!g.grid.visible) return;
+  const int count = window.count < 0 ? grid.columns() - window.first : window.count;
+  const TraceGrid view = trace_view(g);
+  parallel_for(last_row - first_row, threads, [&](int r) {
+    const int row = first_row + r;
+    for (int a = 0; a < count; ++a) {
+      const int column = window.first + a;
+      const glm::dvec3 d = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
+      const RayHit hit = trace_ray(view, g.bounds, job.camera.position, d);
+      if (hit.triangle < 0) continue;
+      Fragment& f =
+          out[static_cast<std::size_t>(row - fragment_row) * static_cast<std::size_t>(count) +
+              static_cast<std::size_t>(a)];
+      f.triangle = hit.triangle;
+      f.weights = hit.weights;
+      f.depth = project(job.camera, job.camera.position + hit.t * d).z;
+    }
+  });
+}
+
 // The footprint filter of the job's frame, or none (render.footprint_filtering off).
 std::optional<FootprintFilter> frame_filter(const RenderJob& job) {
   if (!job.footprint_filtering) return std::nullopt;
@@ -74,6 +106,16 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
     }
   });
   g.triangles = grid_triangles(g.grid);
+  if (job.renderer == Renderer::raytrace) {
+    // The rasterizer skips a triangle with a vertex at or behind the near plane (or not finite).
+    g.untraced.resize(g.triangles.size());
+    for (std::size_t t = 0; t < g.triangles.size(); ++t) {
+      for (const std::uint32_t v : g.triangles[t]) {
+        if (!(g.screen[v].z > job.grid.near)) g.untraced[t] = true;
+      }
+    }
+    g.bounds = build_bounds_tree(trace_view(g));
+  }
   return g;
 }
 
@@ -166,6 +208,10 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
       static_cast<std::size_t>(grid.columns()) * static_cast<std::size_t>(rows),
       "the sample fragments (one per sample of the image)");
   if (!g.grid.visible || rows == 0) return fragments;
+  if (job.renderer == Renderer::raytrace) {
+    trace_fragments(job, g, grid, first_row, last_row, fragments, first_row, {}, job.threads);
+    return fragments;
+  }
   // Bands of sample rows handed out one at a time (parallel_for): the sea's triangles crowd
   // near the horizon, so equal shares per thread would not be equal work; about 8 per thread.
   // Each band rasterizes the triangles that reach it, in triangle order (binned first).
@@ -501,8 +547,13 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
       const int m = 3 * n;
       const SampleGrid samples{job.camera.width, job.camera.height, m};
       window.assign(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), Fragment{});
-      rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
-                job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
+      if (job.renderer == Renderer::raytrace) {
+        trace_fragments(job, g, samples, image_row * m, image_row * m + m, window, image_row * m,
+                        FragmentColumns{x * m, m}, 1);
+      } else {
+        rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
+                  job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
+      }
       const auto at = [](int row, int column, int width) {  // row-major index
         return static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
                static_cast<std::size_t>(column);

@@ -5,17 +5,20 @@
 // samples of a pixel in a fixed order.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <span>
 #include <stdexcept>
 #include <vector>
 
+#include "core/choice.h"
 #include "raster/camera.h"
 #include "raster/projected_grid.h"
 #include "raster/rasterizer.h"
 #include "shading/lighting_terms.h"
 #include "spectrum/moments.h"
+#include "trace/height_field_tracer.h"
 #include "waves/footprint_filter.h"
 #include "waves/ocean.h"
 #include "waves/slope_budget.h"
@@ -33,8 +36,18 @@ inline constexpr double kPixelErrorStandardErrors = 3.0;
 // The smallest pixel tolerance a scene may ask for (relative to the pixel's largest channel).
 inline constexpr double kMinPixelTolerance = 1e-4;
 
+// Which renderer decides what a sample sees (`render --renderer`): the scanline rasterizer
+// (raster/rasterizer.h) or Mastin's height-field ray tracer (trace/height_field_tracer.h), both
+// on the same displaced projected grid and shaded the same way.
+enum class Renderer { raster, raytrace };
+inline constexpr std::array<Choice<Renderer>, 2> kRenderers{{
+    {Renderer::raster, "raster"},
+    {Renderer::raytrace, "raytrace"},
+}};
+
 struct RenderJob {
   const Ocean* ocean = nullptr;
+  Renderer renderer = Renderer::raster;
   double time = 0.0;
   Camera camera;
   ProjectedGridSettings grid;  // columns, rows, margin (the bound is filled in)
@@ -169,6 +182,10 @@ struct FrameGeometry {
   std::vector<glm::dvec3> world;  // [j·columns + i], like grid.base
   std::vector<ScreenVertex> screen;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  // Renderer::raytrace only: the triangles a ray may hit (not those the rasterizer skips at the
+  // near plane) and the bounds quadtree over the grid's cells (trace/height_field_tracer.h).
+  std::vector<bool> untraced;
+  BoundsTree bounds;
 };
 // What every band of a frame shares, computed once: a render in bands (streaming, bounded
 // memory) prepares the frame, then renders its rows band by band.

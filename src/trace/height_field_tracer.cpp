@@ -1,0 +1,158 @@
+#include "trace/height_field_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace oceanref {
+
+namespace {
+constexpr double kEdgeSlack = 1e-12;
+
+// Möller & Trumbore 1997: t and the weights of (b, c) of the hit of a ray with triangle abc;
+// false if it misses or hits at t ≤ 0.
+bool intersect_triangle(const glm::dvec3& origin, const glm::dvec3& direction, const glm::dvec3& a,
+                        const glm::dvec3& b, const glm::dvec3& c, double& t, double& u, double& v) {
+  const glm::dvec3 e1 = b - a, e2 = c - a;
+  const glm::dvec3 p = glm::cross(direction, e2);
+  const double det = glm::dot(e1, p);
+  if (det == 0.0 || !std::isfinite(det)) return false;
+  const double inverse = 1.0 / det;
+  const glm::dvec3 s = origin - a;
+  u = glm::dot(s, p) * inverse;
+  if (u < -kEdgeSlack || u > 1.0 + kEdgeSlack) return false;
+  const glm::dvec3 q = glm::cross(s, e1);
+  v = glm::dot(direction, q) * inverse;
+  if (v < -kEdgeSlack || u + v > 1.0 + kEdgeSlack) return false;
+  t = glm::dot(e2, q) * inverse;
+  return t > 0.0;
+}
+
+// The slab test: the ray's parameter interval inside the box, [near, far] (near > far: misses).
+std::pair<double, double> box_interval(const glm::dvec3& origin, const glm::dvec3& inverse,
+                                       const glm::dvec3& lower, const glm::dvec3& upper) {
+  double near = 0.0, far = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    double t0 = (lower[axis] - origin[axis]) * inverse[axis];
+    double t1 = (upper[axis] - origin[axis]) * inverse[axis];
+    if (std::isnan(t0) || std::isnan(t1)) {  // parallel to the slab, on its plane: inside
+      if (origin[axis] < lower[axis] || origin[axis] > upper[axis]) return {1.0, 0.0};
+      continue;
+    }
+    if (t0 > t1) std::swap(t0, t1);
+    near = std::max(near, t0);
+    far = std::min(far, t1);
+  }
+  return {near, far};
+}
+
+// Tests one triangle against the best hit so far.
+void test_triangle(const TraceGrid& grid, std::size_t index, const glm::dvec3& origin,
+                   const glm::dvec3& direction, RayHit& best) {
+  if ((*grid.skipped)[index]) return;
+  const auto& tri = (*grid.triangles)[index];
+  const std::vector<glm::dvec3>& v = *grid.vertices;
+  double t = 0.0, u = 0.0, w = 0.0;
+  if (!intersect_triangle(origin, direction, v[tri[0]], v[tri[1]], v[tri[2]], t, u, w)) return;
+  const auto id = static_cast<std::int64_t>(index);
+  if (best.triangle >= 0 && (t > best.t || (t == best.t && id > best.triangle))) return;
+  // Clamped into the triangle (a hit on the slack outside an edge is on the edge).
+  u = std::clamp(u, 0.0, 1.0);
+  w = std::clamp(w, 0.0, 1.0 - u);
+  best = {t, id, {1.0 - u - w, u, w}};
+}
+
+int build(const TraceGrid& grid, BoundsTree& tree, int i0, int i1, int j0, int j1) {
+  const int index = static_cast<int>(tree.nodes.size());
+  tree.nodes.emplace_back();
+  BoundsTree::Node node;
+  node.lower = glm::dvec3(std::numeric_limits<double>::infinity());
+  node.upper = -node.lower;
+  const std::vector<glm::dvec3>& v = *grid.vertices;
+  for (int j = j0; j <= j1; ++j) {
+    for (int i = i0; i <= i1; ++i) {
+      const glm::dvec3& p = v[static_cast<std::size_t>(j) * static_cast<std::size_t>(grid.columns) +
+                              static_cast<std::size_t>(i)];
+      node.lower = glm::min(node.lower, p);
+      node.upper = glm::max(node.upper, p);
+    }
+  }
+  // Padded so that a hit on an edge's slack (trace_ray) lies inside its cell's box.
+  const glm::dvec3 pad(1e-9 * (1.0 + std::max({glm::length(node.lower), glm::length(node.upper)})));
+  node.lower -= pad;
+  node.upper += pad;
+  if (i1 - i0 == 1 && j1 - j0 == 1) {
+    node.cell = j0 * (grid.columns - 1) + i0;
+  } else if (i1 - i0 >= j1 - j0) {
+    const int middle = (i0 + i1) / 2;
+    node.children = {build(grid, tree, i0, middle, j0, j1), build(grid, tree, middle, i1, j0, j1)};
+  } else {
+    const int middle = (j0 + j1) / 2;
+    node.children = {build(grid, tree, i0, i1, j0, middle), build(grid, tree, i0, i1, middle, j1)};
+  }
+  tree.nodes[static_cast<std::size_t>(index)] = node;
+  return index;
+}
+}  // namespace
+
+BoundsTree build_bounds_tree(const TraceGrid& grid) {
+  BoundsTree tree;
+  if (grid.columns < 2 || grid.rows < 2) return tree;
+  tree.nodes.reserve(2 * static_cast<std::size_t>(grid.columns - 1) *
+                     static_cast<std::size_t>(grid.rows - 1));
+  build(grid, tree, 0, grid.columns - 1, 0, grid.rows - 1);
+  return tree;
+}
+
+RayHit trace_ray(const TraceGrid& grid, const BoundsTree& tree, const glm::dvec3& origin,
+                 const glm::dvec3& direction) {
+  RayHit best;
+  if (tree.nodes.empty()) return best;
+  const glm::dvec3 inverse = 1.0 / direction;
+  // Depth-first, the nearer child first; a box entered beyond the best hit is skipped.
+  std::vector<std::pair<int, double>> stack{{0, 0.0}};
+  const auto enter = [&](int node) {
+    const BoundsTree::Node& n = tree.nodes[static_cast<std::size_t>(node)];
+    return box_interval(origin, inverse, n.lower, n.upper);
+  };
+  const auto [root_near, root_far] = enter(0);
+  if (root_near > root_far) return best;
+  stack.front().second = root_near;
+  while (!stack.empty()) {
+    const auto [index, near] = stack.back();
+    stack.pop_back();
+    if (best.triangle >= 0 && near > best.t) continue;
+    const BoundsTree::Node& n = tree.nodes[static_cast<std::size_t>(index)];
+    if (n.children[0] < 0) {
+      const auto first = 2 * static_cast<std::size_t>(n.cell);
+      test_triangle(grid, first, origin, direction, best);
+      test_triangle(grid, first + 1, origin, direction, best);
+      continue;
+    }
+    const auto [a, b] = n.children;
+    const auto [a_near, a_far] = enter(a);
+    const auto [b_near, b_far] = enter(b);
+    const bool a_hit = a_near <= a_far, b_hit = b_near <= b_far;
+    // Pushed farther first, so the nearer is popped next.
+    if (a_hit && b_hit && a_near <= b_near) {
+      stack.emplace_back(b, b_near);
+      stack.emplace_back(a, a_near);
+    } else {
+      if (a_hit) stack.emplace_back(a, a_near);
+      if (b_hit) stack.emplace_back(b, b_near);
+    }
+  }
+  return best;
+}
+
+RayHit trace_ray_brute_force(const TraceGrid& grid, const glm::dvec3& origin,
+                             const glm::dvec3& direction) {
+  RayHit best;
+  for (std::size_t i = 0; i < grid.triangles->size(); ++i) {
+    test_triangle(grid, i, origin, direction, best);
+  }
+  return best;
+}
+
+}  // namespace oceanref
