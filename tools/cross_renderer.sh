@@ -4,7 +4,8 @@
 # (`render --renderer raytrace`), both on the same displaced projected grid and shaded the same
 # way, compared per pixel: the share of pixels whose R, G, B are identical in double precision,
 # within 1e-12 and 1e-9 relative, the largest relative difference, the pixels whose sea coverage
-# differs, and each renderer's wall-clock time. A difference is where the two decide visibility
+# differs, whether the double-precision radiance behind the EXR is the same bits
+# (radiance_f64_sha256), and each renderer's wall-clock time. A difference is where the two decide visibility
 # or the interpolation weights differently (edge rules, depth ties, rounding).
 #
 #   tools/cross_renderer.sh [THREADS]   (default 2; builds build/ when missing)
@@ -25,7 +26,7 @@ for scene in reference/scenes/golden/*.json; do
   for renderer in raster raytrace; do
     start=$(date +%s%N)
     "$bin" render "$scene" -o "$tmp/$name.$renderer.exr" --aov --renderer "$renderer" \
-      --threads "$threads" >/dev/null 2>&1
+      --threads "$threads" 2>/dev/null >"$tmp/$name.$renderer.out"
     echo "$name $renderer $(milliseconds "$start")" >>"$tmp/times"
   done
 done
@@ -57,14 +58,24 @@ def read(path):
 
 
 print("| scene | pixels | identical | within 1e-6 | max relative | coverage differs "
-      "| raster | raytrace |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|")
+      "| doubles identical | raster | raytrace |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+
+
+def f64_hash(name, renderer):
+    for line in open(f"{out}/{name}.{renderer}.out"):
+        if line.startswith("radiance_f64_sha256,"):
+            return line.strip().split(",")[1]
+    raise SystemExit(f"no radiance_f64_sha256 for {name} ({renderer})")
+
 for name in sorted({n for n, _ in times}):
     a, cov_a = read(f"{out}/{name}.raster.exr")
     b, cov_b = read(f"{out}/{name}.raytrace.exr")
     d = np.abs(a - b)
     rel = np.where(d == 0, 0.0, d / np.maximum(np.abs(a), 1e-30)).max(axis=1)
     print(f"| {name} | {len(rel)} | {100 * (rel == 0).mean():.2f}% | {100 * (rel <= 1e-6).mean():.2f}% "
-          f"| {rel.max():.2g} | {(cov_a != cov_b).sum()} | {times[(name, 'raster')]:.1f} s "
+          f"| {rel.max():.2g} | {(cov_a != cov_b).sum()} "
+          f"| {'yes' if f64_hash(name, 'raster') == f64_hash(name, 'raytrace') else 'no'} "
+          f"| {times[(name, 'raster')]:.1f} s "
           f"| {times[(name, 'raytrace')]:.1f} s |")
 PY
