@@ -109,7 +109,8 @@ py::array_t<double> scalar_image(const std::vector<double>& v, int width, int he
 }
 
 py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp, bool aov,
-                      bool lighting_error, bool samples, double max_memory) {
+                      bool lighting_error, bool samples, const std::string& renderer,
+                      double max_memory) {
   const int threads = resolve_threads(threads_arg);
   Scene scene = s.scene;
   if (spp) {
@@ -131,6 +132,7 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
                         "the fixed grid's samples only: not with render.pixel_tolerance "
                         "(adaptive sampling)");
   }
+  const Renderer visibility = parse_choice<ArgumentError>(kRenderers, "renderer", renderer);
   RenderOutputOptions options;
   options.aov = aov;
   options.keep_samples = samples;
@@ -143,6 +145,7 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
     job.estimate_fast_error = lighting_error;  // as `oceanref render --lighting-error`
     job.layers = aov;
     job.keep_samples = samples;  // as `oceanref render --samples`
+    job.renderer = visibility;   // as `oceanref render --renderer`
     const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
     image = render(job, unresolved);
   }
@@ -258,7 +261,8 @@ void bind_scene(py::module_& m) {
       py::arg("scene"), py::arg("time") = py::none(), py::arg("threads") = 0);
   m.def("_render", &render_scene, py::arg("scene"), py::arg("threads") = 0,
         py::arg("spp") = py::none(), py::arg("aov") = false, py::arg("lighting_error") = false,
-        py::arg("samples") = false, py::arg("max_memory") = kDefaultMaxMemory);
+        py::arg("samples") = false, py::arg("renderer") = "raster",
+        py::arg("max_memory") = kDefaultMaxMemory);
   m.def("_read_exr", &read_exr_file, py::arg("path"));
 }
 

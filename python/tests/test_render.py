@@ -85,6 +85,11 @@ def test_spp_and_aov(tiny):
     np.testing.assert_array_equal(e["radiance"], b["radiance"])
     with pytest.raises(ValueError, match=r"^samples: the fixed grid's samples only"):
         oceanref.render(adaptive, samples=True)
+    # The second renderer: the same image up to rounding (tests/test_tracer.cpp: within 1e-9).
+    f = oceanref.render(tiny, threads=2, spp=4, renderer="raytrace")
+    np.testing.assert_allclose(f, b["radiance"], rtol=1e-9, atol=1e-12)
+    with pytest.raises(ValueError, match=r"^renderer: expected raster or raytrace"):
+        oceanref.render(tiny, renderer="pathtrace")
 
 
 def test_max_memory_refuses_a_render_before_it_starts(tiny):
