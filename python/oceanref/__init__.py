@@ -153,9 +153,10 @@ def render(scene, threads=0, spp=None, aov=False, lighting_error=False, samples=
     render --lighting-error``; costs a reference render). samples=True: the dict also holds
     samples (H·S, W·S, 3), every sample of the fixed S×S grid (sample (c, r) at image position
     ((c + ½)/S, (r + ½)/S); each pixel the mean of its S×S samples), as ``oceanref render
-    --samples``; not with render.pixel_tolerance. renderer: "raster" or "raytrace" (the height-field
-    ray tracer on the same grid, as ``oceanref render --renderer``). max_memory: bytes; a render whose
-    estimated buffers need more raises RuntimeError (as ``oceanref render --max-memory``).
+    --samples``; not with render.pixel_tolerance. renderer: "raster" or "raytrace" (the
+    height-field ray tracer on the same grid, as ``oceanref render --renderer``). max_memory:
+    bytes; a render whose estimated buffers need more raises RuntimeError (as ``oceanref render
+    --max-memory``).
     """
     result = _core._render(_scene(scene), threads, spp, aov, bool(lighting_error),
                            bool(samples), str(renderer), float(max_memory))
