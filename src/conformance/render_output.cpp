@@ -344,8 +344,7 @@ std::string sampling_text(const RenderJob& job) {
   const int s = job.samples_per_axis;
   std::string text = std::to_string(s * s) + " spp";
   if (job.pixel_tolerance > 0.0) {
-    int n = s;
-    for (int r = 0; r < job.max_refinements; ++r) n *= 3;
+    const int n = refined_samples_per_axis(s, job.max_refinements);
     text += " refined to a tolerance of " + format_number(job.pixel_tolerance) + " up to " +
             std::to_string(n * n);
   }

@@ -392,9 +392,14 @@ bool reaches_column(const Geometry& g, std::uint32_t t, int x) {
 
 }  // namespace
 
+int refined_samples_per_axis(int samples_per_axis, int refinements) {
+  int n = samples_per_axis;
+  for (int r = 0; r < refinements; ++r) n *= 3;
+  return n;
+}
+
 double refinement_bytes(int samples_per_axis, int refinements) {
-  double n = samples_per_axis;
-  for (int r = 0; r < refinements; ++r) n *= 3.0;
+  const double n = refined_samples_per_axis(samples_per_axis, refinements);
   const double finest = n * n;
   return finest * static_cast<double>(sizeof(Fragment)) +
          (finest + finest / 9.0) * static_cast<double>(sizeof(SampleValue));
@@ -516,9 +521,11 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
   if (adaptive) {
     image.pixel_samples = allocate_buffer<double>(pixels, "the per-pixel sample counts");
   }
+  // The triangles binned per pixel row, for rasterizing refined pixels (the ray tracer needs none).
   const std::vector<std::vector<std::uint32_t>> row_triangles =
-      adaptive ? triangles_by_pixel_row(job, g, first_row, last_row)
-               : std::vector<std::vector<std::uint32_t>>{};
+      adaptive && job.renderer == Renderer::raster
+          ? triangles_by_pixel_row(job, g, first_row, last_row)
+          : std::vector<std::vector<std::uint32_t>>{};
   std::atomic<long> unconverged{0};
   std::atomic<long> evaluations{0};
   std::atomic<long> capped{0};
@@ -592,7 +599,7 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
         for (int r = 0;
              r < job.max_refinements && !(values.size() > 1 && within_tolerance(estimate, job));
              ++r) {
-          if (r == 0) {
+          if (r == 0 && job.renderer == Renderer::raster) {
             subset.clear();
             for (const std::uint32_t t : row_triangles[static_cast<std::size_t>(y)]) {
               if (reaches_column(g, t, x)) subset.push_back(t);

@@ -125,6 +125,9 @@ struct RenderedImage {
   double displacement_bound = 0.0;
 };
 
+// S·3^refinements: the samples per axis of a pixel of S×S refined `refinements` times (the cap
+// of adaptive sampling; S without refinement).
+int refined_samples_per_axis(int samples_per_axis, int refinements);
 // The scratch memory of one thread's adaptive refinement from S×S samples up to
 // S·3^refinements per axis: the samples of two levels and the fragments of one [bytes].
 double refinement_bytes(int samples_per_axis, int refinements);

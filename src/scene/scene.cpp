@@ -875,10 +875,4 @@ Scene load_scene(const std::string& path) {
   return load_scene(path, &std::cerr);
 }
 
-int max_samples_per_pixel(const ImageSettings& im) {
-  int n = im.samples_per_axis;
-  for (int r = 0; r < im.max_refinements; ++r) n *= 3;
-  return n * n;
-}
-
 }  // namespace oceanref

@@ -56,10 +56,6 @@ struct ImageSettings {
   double tone_white = 0.0;           // L_white for the preview; 0: the largest scaled luminance
 };
 
-// The most samples a pixel of the image gets: (S·3^max_refinements)² (S² without adaptive
-// sampling).
-int max_samples_per_pixel(const ImageSettings& im);
-
 // A key present in a scene file that does nothing for this scene (pbrt-v4's ReportUnused): e.g.
 // a setting of a spectrum or mode the scene does not select. Keys of the other lighting mode,
 // and spectrum parameters of another model, are errors instead (see parse_scene).

@@ -51,8 +51,8 @@ struct FootprintQuadratic {
   }
 };
 
-FootprintAxes footprint_axes(const Footprint& f, double wind_direction) {
-  const double c = math::cos(wind_direction), s = math::sin(wind_direction);
+// (c, s) = (cos φ, sin φ) of the wind.
+FootprintAxes footprint_axes(const Footprint& f, double c, double s) {
   // Σ_wind = Rᵀ Σ R with R's columns the wind (c, s) and across it (−s, c).
   const double uu = c * c * f.xx + 2.0 * c * s * f.xz + s * s * f.zz;
   const double vv = s * s * f.xx - 2.0 * c * s * f.xz + c * c * f.zz;
@@ -294,7 +294,8 @@ FootprintFilter make_footprint_filter(const Ocean& ocean, double time, Interpola
   std::vector<double> sizes;
   for (const CascadeSpectra& c : ocean.cascades) sizes.push_back(c.high.pattern.size);
   f.radii = level_radii(sizes, ocean.cascades.front().high.pattern.resolution);
-  f.wind_direction = ocean.spectrum.wind_direction;
+  f.wind_cos = math::cos(ocean.spectrum.wind_direction);
+  f.wind_sin = math::sin(ocean.spectrum.wind_direction);
   f.levels.resize(f.radii.size() - 1);
   parallel_for(static_cast<int>(f.levels.size()), threads, [&](int l) {
     FilterLevel& level = f.levels[static_cast<std::size_t>(l)];
@@ -325,31 +326,46 @@ double footprint_filter_bytes(const WaveSettings& settings) {
   return bytes;
 }
 
+namespace {
+// read(ocean, grids, evolved) of the two levels footprint `f` is read from (level 0: the frame's
+// own), with the blend's weight; `second` is read only when the weight is not 0.
+template <class Read>
+auto read_levels(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                 const std::vector<EvolvedCascade>& evolved, const FootprintFilter& filter,
+                 const Footprint& f, const Read& read) {
+  const LevelBlend b = level_blend(filter.radii, footprint_major_variance(f));
+  const auto at = [&](int level) {
+    if (level == 0) return read(ocean, fields, evolved);
+    const FilterLevel& l = filter.levels[static_cast<std::size_t>(level) - 1];
+    return read(l.ocean, l.grids, l.evolved);
+  };
+  const auto first = at(b.level);
+  return std::tuple{first, b.weight == 0.0 ? first : at(b.level + 1), b.weight};
+}
+}  // namespace
+
 PointFields filtered_fields_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                const std::vector<EvolvedCascade>& evolved,
                                const FootprintFilter& filter, double x, double z,
                                const Footprint& f, Interpolation mode, ShadingNormals normals) {
-  const LevelBlend b = level_blend(filter.radii, footprint_major_variance(f));
-  const auto at = [&](int level) {
-    if (level == 0) return combine_shading_at(ocean, fields, evolved, x, z, mode, normals);
-    const FilterLevel& l = filter.levels[static_cast<std::size_t>(level) - 1];
-    return combine_shading_at(l.ocean, l.grids, l.evolved, x, z, mode, normals);
-  };
-  const PointFields first = at(b.level);
-  if (b.weight == 0.0) return first;
-  const PointFields second = at(b.level + 1);
+  const auto [first, second, weight] = read_levels(
+      ocean, fields, evolved, filter, f, [&](const Ocean& o, const auto& g, const auto& e) {
+        return combine_shading_at(o, g, e, x, z, mode, normals);
+      });
+  if (weight == 0.0) return first;
+  const double w = weight;
   PointFields p;
   for (std::size_t i = 0; i < p.raw.size(); ++i) {
-    p.raw[i] = blend(first.raw[i], second.raw[i], b.weight);
+    p.raw[i] = blend(first.raw[i], second.raw[i], w);
   }
-  p.ddz_dx = blend(first.ddz_dx, second.ddz_dx, b.weight);
-  p.height = blend(first.height, second.height, b.weight);
-  p.slope_x = blend(first.slope_x, second.slope_x, b.weight);
-  p.slope_z = blend(first.slope_z, second.slope_z, b.weight);
-  p.jacobian = blend(first.jacobian, second.jacobian, b.weight);
-  p.foam = blend(first.foam, second.foam, b.weight);
+  p.ddz_dx = blend(first.ddz_dx, second.ddz_dx, w);
+  p.height = blend(first.height, second.height, w);
+  p.slope_x = blend(first.slope_x, second.slope_x, w);
+  p.slope_z = blend(first.slope_z, second.slope_z, w);
+  p.jacobian = blend(first.jacobian, second.jacobian, w);
+  p.foam = blend(first.foam, second.foam, w);
   std::array<double, 3> n{};
-  for (std::size_t c = 0; c < 3; ++c) n[c] = blend(first.normal[c], second.normal[c], b.weight);
+  for (std::size_t c = 0; c < 3; ++c) n[c] = blend(first.normal[c], second.normal[c], w);
   const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   for (std::size_t c = 0; c < 3; ++c) p.normal[c] = n[c] / length;
   return p;
@@ -361,22 +377,19 @@ DisplacedPoint filtered_displaced_point(const Ocean& ocean,
                                         const FootprintFilter& filter, double x0, double z0,
                                         const Footprint& f, Interpolation mode,
                                         ShadingNormals normals) {
-  const LevelBlend b = level_blend(filter.radii, footprint_major_variance(f));
-  const auto at = [&](int level) {
-    if (level == 0) return displaced_point(ocean, fields, evolved, x0, z0, mode, normals);
-    const FilterLevel& l = filter.levels[static_cast<std::size_t>(level) - 1];
-    return displaced_point(l.ocean, l.grids, l.evolved, x0, z0, mode, normals);
-  };
-  const DisplacedPoint first = at(b.level);
-  if (b.weight == 0.0) return first;
-  const DisplacedPoint second = at(b.level + 1);
-  return {blend(first.x, second.x, b.weight), blend(first.height, second.height, b.weight),
-          blend(first.z, second.z, b.weight)};
+  const auto [first, second, weight] = read_levels(
+      ocean, fields, evolved, filter, f, [&](const Ocean& o, const auto& g, const auto& e) {
+        return displaced_point(o, g, e, x0, z0, mode, normals);
+      });
+  if (weight == 0.0) return first;
+  const double w = weight;
+  return {blend(first.x, second.x, w), blend(first.height, second.height, w),
+          blend(first.z, second.z, w)};
 }
 
 SlopeVariance footprint_slope_variance(const FootprintFilter& filter, const Footprint& f) {
   const FootprintVarianceTable& t = filter.variance;
-  const FootprintAxes axes = footprint_axes(f, filter.wind_direction);
+  const FootprintAxes axes = footprint_axes(f, filter.wind_cos, filter.wind_sin);
   if (!(axes.major > 0.0)) return {};
   // Radius: the node position, and below node 0 that node's value scaled by λ₁/λ₁(node 0)
   // (V ∝ λ₁ as λ₁ → 0).
@@ -412,7 +425,8 @@ SlopeVariance footprint_slope_variance(const FootprintFilter& filter, const Foot
 SlopeVariance footprint_slope_variance_exact(const Ocean& ocean, double time,
                                              ShadingNormals normals,
                                              const std::vector<double>& radii, const Footprint& f) {
-  const FootprintQuadratic sigma(footprint_axes(f, ocean.spectrum.wind_direction));
+  const FootprintQuadratic sigma(footprint_axes(f, math::cos(ocean.spectrum.wind_direction),
+                                                math::sin(ocean.spectrum.wind_direction)));
   const LevelBlend read = level_blend(radii, footprint_major_variance(f));
   SlopeVariance v;
   for_each_mode(ocean, time, normals, [&](double ka, double kc, double power) {

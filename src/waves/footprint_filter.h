@@ -68,10 +68,10 @@ struct FootprintVarianceTable {
 };
 
 struct FootprintFilter {
-  std::vector<double> radii;        // r_l [m]; radii[0] = 0 (the unfiltered fields)
-  std::vector<FilterLevel> levels;  // levels[l − 1] is level l ≥ 1
-  double wind_direction = 0.0;      // φ [rad] of the table's wind frame
-  FootprintVarianceTable variance;  // V(Σ)
+  std::vector<double> radii;              // r_l [m]; radii[0] = 0 (the unfiltered fields)
+  std::vector<FilterLevel> levels;        // levels[l − 1] is level l ≥ 1
+  double wind_cos = 1.0, wind_sin = 0.0;  // (cos φ, sin φ): the table's wind frame
+  FootprintVarianceTable variance;        // V(Σ)
 };
 
 // The filter of the frame at time t for the renderer's interpolation and normals (the slopes of
