@@ -4,7 +4,13 @@
 # build, thread count, CPU variant and architecture. Each build is also checked at the
 # machine-code level (tools/check_binary.sh: no libm transcendental, no fused multiply-add).
 #
-#   tools/determinism_matrix.sh          what CI runs on every stop (.ci/run):
+#   tools/determinism_matrix.sh --ci     what CI runs on every stop (.ci/run), after tools/test.sh
+#       and with no build of its own: the gcc -O3 build (build/) with 1 thread (ctest's golden
+#       test ran it with 2), the clang -O2 build (build-clang/, tools/compare_compilers.sh) with 2
+#       threads, every scene; the gcc build under glibc's no-FMA/AVX2 variants on the two
+#       sensitive scenes.
+#   tools/determinism_matrix.sh          the cross-build matrix (five
+#       builds and the aarch64 sysroot), run by hand before a change to the numerics lands:
 #       gcc -O3 (Release) with 1 and 2 threads; clang -O2 (RelWithDebInfo), gcc -O3
 #       -march=x86-64-v3 (AVX2 and FMA available to the compiler), clang -O3 -march=native with 2
 #       threads; gcc -O0 (Debug) with 2 threads on the two sensitive scenes (default_small, the
@@ -20,11 +26,13 @@ cd "$(dirname "$0")/.."
 
 full=0
 aarch64=1
+ci=0
 for arg in "$@"; do
   case "$arg" in
     --full) full=1 ;;
+    --ci) ci=1 ;;
     --no-aarch64) aarch64=0 ;;
-    *) echo "usage: tools/determinism_matrix.sh [--full] [--no-aarch64]" >&2; exit 2 ;;
+    *) echo "usage: tools/determinism_matrix.sh [--ci | --full] [--no-aarch64]" >&2; exit 2 ;;
   esac
 done
 threads=(1 2)
@@ -47,12 +55,23 @@ verify() {
   fi
 }
 
+sensitive=(--only default_small,long_horizon_many_cascades_grazing_sun)
 bash tools/build.sh build
-CC=clang CXX=clang++ bash tools/build.sh build-clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DOCEANREF_PYTHON=OFF  # -O2 -g, as tools/compare_compilers.sh configures it
 # The matrix renders with the program only: neither tests nor the Python module in the extra
-# builds (build/ and build-clang/ run the tests: tools/test.sh, tools/compare_compilers.sh).
+# builds (build/ runs the tests: tools/test.sh).
 program_only=(-DOCEANREF_PYTHON=OFF -DBUILD_TESTING=OFF)
+CC=clang CXX=clang++ bash tools/build.sh build-clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "${program_only[@]}"  # -O2 -g, as tools/compare_compilers.sh configures it
+if [ "$ci" -eq 1 ]; then
+  for dir in build build-clang; do bash tools/check_binary.sh "$dir" || failures=$((failures + 1)); done
+  verify "build, 1 thread" 1 build/src/oceanref
+  verify "build-clang, 2 threads" 2 build-clang/src/oceanref
+  only=("${sensitive[@]}")
+  GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2_Usable,-AVX2,-FMA,-AVX,-FMA4 \
+    verify "build, glibc without AVX/AVX2/FMA variants" 2 build/src/oceanref
+  [ "$failures" -eq 0 ] && echo "determinism: all identical (CI subset; the cross-build matrix: tools/determinism_matrix.sh)"
+  exit $((failures > 0))
+fi
 bash tools/build.sh build-O0 -DCMAKE_BUILD_TYPE=Debug "${program_only[@]}"  # -g, no optimization
 bash tools/build.sh build-gcc-v3 -DCMAKE_C_FLAGS=-march=x86-64-v3 -DCMAKE_CXX_FLAGS=-march=x86-64-v3 \
   "${program_only[@]}"
@@ -72,7 +91,6 @@ done
 # The reference lighting costs ~1 ms per sea sample optimized, ~10x more unoptimized: the main
 # build runs every scene at every thread count, the other builds at the last thread count, and
 # the -O0 build the two scenes made to be sensitive (--full: everything everywhere).
-sensitive=(--only default_small,long_horizon_many_cascades_grazing_sun)
 for dir in "${builds[@]}"; do
   for t in "${threads[@]}"; do
     if [ "$full" -eq 0 ] && [ "$dir" != build ] && [ "$t" != "${threads[-1]}" ]; then continue; fi
