@@ -25,11 +25,13 @@
 
 #include "glitter_scene.h"
 #include "temp_dir.h"
+#include "test_support.h"
 
 using namespace oceanref;
 using nlohmann::json;
 
 namespace {
+using testing::same_bits;
 json glitter() {
   return testing::glitter_scene_json(4);
 }
@@ -50,10 +52,6 @@ RenderedScene render_with(const Scene& scene, int threads, bool aov = false) {
 // The largest channel of a pixel (the tolerance's scale).
 double largest(const Vec3& v) {
   return std::max({v[0], v[1], v[2]});
-}
-
-bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
 }
 }  // namespace
 

@@ -11,13 +11,15 @@
 #include <vector>
 
 #include "spectrum/moments.h"
+#include "test_support.h"
 #include "waves/realization.h"
 #include "waves/slope_budget.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using testing::kInfinity;
+using testing::relative;
 
 // Σ (k·ŵ)² cell_variance and Σ (k·ŵ⊥)² cell_variance over the N×N lattice of a pattern, and the
 // same through the slope budget's resolved_slope_variance of the deterministic amplitudes
@@ -49,9 +51,6 @@ LatticeSums lattice_sums(const Spectrum& s, const Pattern& p) {
   return out;
 }
 
-double relative(double a, double b) {
-  return std::fabs(a - b) / std::fabs(b);
-}
 }  // namespace
 
 TEST_CASE("band_slope_variance equals the lattice sum of a smooth spectrum to 1e-9") {

@@ -7,17 +7,15 @@
 #include "core/quadrature.h"
 #include "shading/ocean_lighting.h"
 #include "shading/tone_mapping.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-const SurfaceFrame up = wind_frame({0.0, 1.0, 0.0}, 0.3);
-
-Vec3 dir(double zenith_deg, double azimuth_deg) {
-  return direction_from_angles(zenith_deg * kDeg, azimuth_deg * kDeg);
-}
+using testing::direction_deg;
+using testing::kDeg;
+using testing::kPi;
+const SurfaceFrame kUp = wind_frame({0.0, 1.0, 0.0}, 0.3);
 
 // ∫ f(L, V) cos θ_L dω_L over the upper hemisphere, by adaptive quadrature in polar coordinates
 // around the mirror direction (independent of the slope-space Gauss–Hermite path).
@@ -48,7 +46,7 @@ double hemisphere_albedo(const Vec3& view, SlopeVariance s, FresnelForm fresnel)
                                                        std::sin(r) * (std::cos(psi) * e1[k] +
                                                                       std::sin(psi) * e2[k]);
                                           }
-                                          return ocean_brdf(light, view, up, s, options).brdf_cos;
+                                          return ocean_brdf(light, view, kUp, s, options).brdf_cos;
                                         },
                                         {0.0, kPi / 2, kPi, 3 * kPi / 2, 2 * kPi}, tol)
                                         .value;
@@ -117,24 +115,24 @@ TEST_CASE("smith_terms (one erfc for both) equals smith_lambda and visible_proje
 
 TEST_CASE("BRDF: reciprocity, isotropic rotation symmetry, zero below the surface") {
   const SlopeVariance s{0.02, 0.01};
-  for (const auto& [l, v] :
-       {std::pair{dir(30, 10), dir(50, 200)}, std::pair{dir(75, 40), dir(10, 0)},
-        std::pair{dir(85, 300), dir(88, 120)}}) {
-    const double f_lv = ocean_brdf(l, v, up, s).brdf_cos / l[1];
-    const double f_vl = ocean_brdf(v, l, up, s).brdf_cos / v[1];
+  for (const auto& [l, v] : {std::pair{direction_deg(30, 10), direction_deg(50, 200)},
+                             std::pair{direction_deg(75, 40), direction_deg(10, 0)},
+                             std::pair{direction_deg(85, 300), direction_deg(88, 120)}}) {
+    const double f_lv = ocean_brdf(l, v, kUp, s).brdf_cos / l[1];
+    const double f_vl = ocean_brdf(v, l, kUp, s).brdf_cos / v[1];
     CHECK(f_lv == doctest::Approx(f_vl).epsilon(1e-12));
   }
   const SlopeVariance iso{0.015, 0.015};
-  const double a = ocean_brdf(dir(40, 10), dir(60, 170), up, iso).brdf_cos;
-  const double b = ocean_brdf(dir(40, 77), dir(60, 237), up, iso).brdf_cos;
+  const double a = ocean_brdf(direction_deg(40, 10), direction_deg(60, 170), kUp, iso).brdf_cos;
+  const double b = ocean_brdf(direction_deg(40, 77), direction_deg(60, 237), kUp, iso).brdf_cos;
   CHECK(a == doctest::Approx(b).epsilon(1e-12));
-  CHECK(ocean_brdf(dir(95, 0), dir(40, 180), up, s).brdf_cos == 0.0);
-  CHECK(ocean_brdf(dir(40, 0), dir(91, 180), up, s).brdf_cos == 0.0);
+  CHECK(ocean_brdf(direction_deg(95, 0), direction_deg(40, 180), kUp, s).brdf_cos == 0.0);
+  CHECK(ocean_brdf(direction_deg(40, 0), direction_deg(91, 180), kUp, s).brdf_cos == 0.0);
 }
 
 TEST_CASE("BRDF energy: with F = 1 the albedo is <= 1, -> 1 for smooth water; F-weighted -> F") {
   for (const double view_zenith : {0.0, 30.0, 60.0, 80.0}) {
-    const Vec3 v = dir(view_zenith, 20);
+    const Vec3 v = direction_deg(view_zenith, 20);
     const double smooth = hemisphere_albedo(v, {1e-4, 1e-4}, FresnelForm::unity);
     CAPTURE(view_zenith);
     CHECK(smooth <= 1.0 + 1e-6);
@@ -152,11 +150,11 @@ TEST_CASE("BRDF energy: with F = 1 the albedo is <= 1, -> 1 for smooth water; F-
 TEST_CASE("reflected sky: Gauss-Hermite converges to the hemisphere integral") {
   const Sky sky = make_sky(2.5, 35.0 * kDeg, 0.0);
   const SlopeVariance s{0.02, 0.012};
-  const Vec3 v = dir(70, 160);
+  const Vec3 v = direction_deg(70, 160);
   Vec3 previous{};
   double previous_change = 1e300;
   for (const int order : {8, 16, 32, 64}) {
-    const Vec3 l = reflected_sky(v, up, s, sky, order);
+    const Vec3 l = reflected_sky(v, kUp, s, sky, order);
     const double change = std::fabs(l[1] - previous[1]);
     if (order > 8) CHECK(change < previous_change * 1.5);
     previous_change = change;
@@ -170,7 +168,7 @@ TEST_CASE("reflected sky: Gauss-Hermite converges to the hemisphere integral") {
             return std::sin(theta) * integrate(
                                          [&](double phi) {
                                            const Vec3 light = direction_from_angles(theta, phi);
-                                           return ocean_brdf(light, v, up, s).brdf_cos *
+                                           return ocean_brdf(light, v, kUp, s).brdf_cos *
                                                   sky_radiance_rgb(sky, light)[1];
                                          },
                                          {-kPi, -kPi / 2, 0.0, kPi / 2, kPi}, tol)
@@ -183,11 +181,11 @@ TEST_CASE("reflected sky: Gauss-Hermite converges to the hemisphere integral") {
 
 TEST_CASE("sun disk: the point-sun limit and convergence of the disk quadrature") {
   const SlopeVariance s{0.01, 0.006};
-  const Vec3 sun = dir(40, 0);
-  const Vec3 v = dir(42, 180.5);
-  const double point = reflected_sun(sun, kSunAngularRadius, v, up, s, 0);
-  const double disk8 = reflected_sun(sun, kSunAngularRadius, v, up, s, 8);
-  const double disk16 = reflected_sun(sun, kSunAngularRadius, v, up, s, 16);
+  const Vec3 sun = direction_deg(40, 0);
+  const Vec3 v = direction_deg(42, 180.5);
+  const double point = reflected_sun(sun, kSunAngularRadius, v, kUp, s, 0);
+  const double disk8 = reflected_sun(sun, kSunAngularRadius, v, kUp, s, 8);
+  const double disk16 = reflected_sun(sun, kSunAngularRadius, v, kUp, s, 16);
   CHECK(disk16 == doctest::Approx(disk8).epsilon(1e-10));
   CHECK(disk16 == doctest::Approx(point).epsilon(1e-3));  // smooth lobe ≫ the 0.27° disk
 }
@@ -207,7 +205,7 @@ TEST_CASE("extremes: grazing view, sun at and below the horizon, sigma^2 from 1e
   Vec3 brightest = sky_radiance_rgb(sky, sky.sun_direction);
   for (int z = 0; z <= 180; ++z) {  // 0.5° × 1°, and the sun's own direction
     for (int a = 0; a < 360; ++a) {
-      const Vec3 l = sky_radiance_rgb(sky, dir(0.5 * z, a));
+      const Vec3 l = sky_radiance_rgb(sky, direction_deg(0.5 * z, a));
       for (std::size_t c = 0; c < 3; ++c) brightest[c] = std::fmax(brightest[c], l[c]);
     }
   }
@@ -215,10 +213,10 @@ TEST_CASE("extremes: grazing view, sun at and below the horizon, sigma^2 from 1e
     for (const double vz : {0.0, 45.0, 89.0, 89.9999, 90.0}) {
       for (const double sz : {0.0, 60.0, 89.999, 90.0, 100.0}) {
         const SlopeVariance s{s2, 0.5 * s2};
-        const Vec3 v = dir(vz, 180);
-        const double sun = reflected_sun(dir(sz, 0), kSunAngularRadius, v, up, s, 4);
-        const double f = mean_fresnel(v, up, s, 16);
-        const Vec3 sk = reflected_sky(v, up, s, sky, 16);
+        const Vec3 v = direction_deg(vz, 180);
+        const double sun = reflected_sun(direction_deg(sz, 0), kSunAngularRadius, v, kUp, s, 4);
+        const double f = mean_fresnel(v, kUp, s, 16);
+        const Vec3 sk = reflected_sky(v, kUp, s, sky, 16);
         CAPTURE(s2);
         CAPTURE(vz);
         CAPTURE(sz);

@@ -36,7 +36,7 @@ void check_table(const Table& table) {
   }
 }
 
-std::string scene_error(const std::string& section_json) {
+std::string section_error(const std::string& section_json) {
   try {
     parse_scene(nlohmann::json::parse(section_json));
   } catch (const SceneError& e) {
@@ -98,15 +98,15 @@ TEST_CASE("parse_choice: the value, or the caller's error naming the key and the
 }
 
 TEST_CASE("scene files: a wrong name is reported with its JSON path and the valid names") {
-  CHECK(scene_error(R"({"waves": {"realization": "white"}})") ==
+  CHECK(section_error(R"({"waves": {"realization": "white"}})") ==
         "waves.realization: expected gaussian or mastin; got 'white'");
-  CHECK(scene_error(R"({"waves": {"spectrum": {"pm_wind": "u20"}}})") ==
+  CHECK(section_error(R"({"waves": {"spectrum": {"pm_wind": "u20"}}})") ==
         "waves.spectrum.pm_wind: expected u10 or u19.5; got 'u20'");
-  CHECK(scene_error(R"({"waves": {"dispersion": "shallow"}})") ==
+  CHECK(section_error(R"({"waves": {"dispersion": "shallow"}})") ==
         "waves.dispersion: expected one of deep, finite-depth, capillary; got 'shallow'");
-  CHECK(scene_error(R"({"waves": {}, "shading": {"fresnel": "unity"}})") ==
+  CHECK(section_error(R"({"waves": {}, "shading": {"fresnel": "unity"}})") ==
         "shading.fresnel: expected exact or schlick; got 'unity'");
-  CHECK(scene_error(R"({"waves": {}, "shading": {"interpolation": "nearest"}})") ==
+  CHECK(section_error(R"({"waves": {}, "shading": {"interpolation": "nearest"}})") ==
         "shading.interpolation: expected one of bilinear, bicubic, direct; got 'nearest'");
   // And each name reaches the settings.
   const Scene s = parse_scene(nlohmann::json::parse(

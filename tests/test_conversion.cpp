@@ -8,23 +8,25 @@
 
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-const QuadratureTolerance kTight{1e-11, 0.0, 4000};
+using testing::kPi;
+const QuadratureTolerance kConversionTolerance{1e-11, 0.0, 4000};
 
 double frequency_integral(const Spectrum& s) {
   std::vector<double> b{0.0};
   for (int j = -6; j <= 12; ++j) b.push_back(std::ldexp(s.peak_frequency, j));
   b.push_back(HUGE_VAL);
-  return integrate([&](double w) { return frequency_spectrum(s, w); }, b, kTight).value;
+  return integrate([&](double w) { return frequency_spectrum(s, w); }, b, kConversionTolerance)
+      .value;
 }
 
 double wavenumber_integral(const Spectrum& s) {
   return integrate([&](double k) { return wavenumber_spectrum(s, k); },
-                   wavenumber_breakpoints(s, HUGE_VAL), kTight)
+                   wavenumber_breakpoints(s, HUGE_VAL), kConversionTolerance)
       .value;
 }
 
@@ -43,7 +45,7 @@ double wavevector_integral(const Spectrum& s) {
                               {-kPi, -0.5 * kPi, 0.0, 0.5 * kPi, kPi}, inner)
                               .value;
              },
-             wavenumber_breakpoints(s, HUGE_VAL), kTight)
+             wavenumber_breakpoints(s, HUGE_VAL), kConversionTolerance)
       .value;
 }
 }  // namespace

@@ -6,39 +6,38 @@
 #include <vector>
 
 #include "spectrum/dispersion.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-const Dispersion deep{DispersionKind::deep, 9.81, HUGE_VAL, 370.0};
+using testing::relative;
+const Dispersion kDeep{DispersionKind::deep, 9.81, HUGE_VAL, 370.0};
 Dispersion finite_depth(double h) {
   return {DispersionKind::finite_depth, 9.81, h, 370.0};
 }
 Dispersion capillary(double h = HUGE_VAL) {
   return {DispersionKind::capillary, 9.81, h, 370.0};
 }
-double relative(double a, double b) {
-  return std::fabs(a - b) / std::fabs(b);
-}
 }  // namespace
 
 TEST_CASE("deep water: omega = sqrt(gk), c = omega/k, group velocity = c/2") {
   for (const double k : {1e-6, 0.01, 1.0, 100.0, 1e5}) {
     const double w = std::sqrt(9.81 * k);
-    CHECK(angular_frequency(deep, k) == w);
-    CHECK(relative(phase_speed(deep, k), w / k) < 1e-15);
-    CHECK(relative(group_velocity(deep, k), 0.5 * w / k) < 1e-15);
+    CHECK(angular_frequency(kDeep, k) == w);
+    CHECK(relative(phase_speed(kDeep, k), w / k) < 1e-15);
+    CHECK(relative(group_velocity(kDeep, k), 0.5 * w / k) < 1e-15);
   }
-  CHECK(angular_frequency(deep, 0.0) == 0.0);
-  CHECK(std::isinf(group_velocity(deep, 0.0)));
+  CHECK(angular_frequency(kDeep, 0.0) == 0.0);
+  CHECK(std::isinf(group_velocity(kDeep, 0.0)));
 }
 
 TEST_CASE("finite depth tends to deep water as kh grows and to sqrt(gh) k as kh -> 0") {
   // kh ≥ 20: tanh(kh) = 1 − 2e^{−40} = 1 in double, so the relations agree to rounding.
   for (const double k : {0.02, 0.5, 7.0}) {
-    CHECK(relative(angular_frequency(finite_depth(1000.0 / k), k), angular_frequency(deep, k)) <
+    CHECK(relative(angular_frequency(finite_depth(1000.0 / k), k), angular_frequency(kDeep, k)) <
           1e-15);
-    CHECK(relative(group_velocity(finite_depth(1000.0 / k), k), group_velocity(deep, k)) < 1e-15);
+    CHECK(relative(group_velocity(finite_depth(1000.0 / k), k), group_velocity(kDeep, k)) < 1e-15);
   }
   // Shallow: ω = k√(gh)·(1 − (kh)²/6 + …); at kh = 1e−4 the relative gap is 1.7e−9.
   const double h = 2.0;
@@ -51,7 +50,7 @@ TEST_CASE("finite depth tends to deep water as kh grows and to sqrt(gh) k as kh 
 
 TEST_CASE("gravity-capillary: deep-water limit and Lamb's minimum phase speed c_m = 0.23 m/s") {
   // ω_cap/ω_deep = √(1 + (k/k_m)²) ≈ 1 + (k/k_m)²/2: 3.7e−9 at k = 0.01 rad/m.
-  CHECK(relative(angular_frequency(capillary(), 0.01), angular_frequency(deep, 0.01)) < 4e-10);
+  CHECK(relative(angular_frequency(capillary(), 0.01), angular_frequency(kDeep, 0.01)) < 4e-10);
   // With depth, the tanh(kh) factor of Alimardanov eq. 2.9 applies as well.
   CHECK(relative(angular_frequency(capillary(3.0), 0.4),
                  std::sqrt(9.81 * 0.4 * (1.0 + 0.4 * 0.4 / (370.0 * 370.0)) *
@@ -67,7 +66,7 @@ TEST_CASE("gravity-capillary: deep-water limit and Lamb's minimum phase speed c_
 TEST_CASE("group velocity is the derivative of omega(k)") {
   // Central differences with step 1e−5·k: truncation ~1e−10, rounding ~1e−11 relative.
   for (const Dispersion& d :
-       {deep, finite_depth(0.3), finite_depth(20.0), capillary(), capillary(0.05)}) {
+       {kDeep, finite_depth(0.3), finite_depth(20.0), capillary(), capillary(0.05)}) {
     for (const double k : {0.003, 0.1, 2.0, 50.0, 400.0, 3000.0}) {
       const double step = 1e-5 * k;
       const double numeric =
@@ -78,7 +77,7 @@ TEST_CASE("group velocity is the derivative of omega(k)") {
 }
 
 TEST_CASE("k(omega) inverts omega(k) for every relation, depth and wavenumber") {
-  for (const Dispersion& d : {deep, finite_depth(0.01), finite_depth(0.5), finite_depth(40.0),
+  for (const Dispersion& d : {kDeep, finite_depth(0.01), finite_depth(0.5), finite_depth(40.0),
                               capillary(), capillary(0.2)}) {
     for (double k = 1e-5; k < 1e5; k *= 3.7) {
       const double w = angular_frequency(d, k);
@@ -98,5 +97,5 @@ TEST_CASE("tiny frequencies: the shallow-water limit k = omega/sqrt(gh) holds do
     }
     CHECK(wavenumber_from_frequency(d, std::numeric_limits<double>::denorm_min()) >= 0.0);
   }
-  CHECK(wavenumber_from_frequency(deep, 1e-300) == 0.0);  // ω²/g underflows
+  CHECK(wavenumber_from_frequency(kDeep, 1e-300) == 0.0);  // ω²/g underflows
 }

@@ -25,14 +25,14 @@
 #include "io/exr_camera.h"
 
 #include "temp_dir.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
+using testing::same_bits;
 // A fresh folder per test, named after this file.
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("oceanref_exr_") {}
-};
+using testing::TempDir;
 
 std::string error_of(const std::function<void()>& f) {
   try {
@@ -41,10 +41,6 @@ std::string error_of(const std::function<void()>& f) {
     return e.what();
   }
   return "";
-}
-
-bool same_bits(float a, float b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 const ExrChannel* find_channel(const ExrImage& image, const std::string& name) {

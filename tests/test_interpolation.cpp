@@ -18,13 +18,14 @@
 #include <tuple>
 #include <vector>
 
+#include "test_support.h"
 #include "waves/interpolation.h"
 #include "waves/realization.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 struct Poly {  // Σ c_ab x^a z^b, a, b ≤ 3
   double c[4][4] = {};

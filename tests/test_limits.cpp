@@ -10,15 +10,14 @@
 #include "shading/ocean_lighting.h"
 #include "sky/preetham.h"
 #include "spectrum/model.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-Vec3 dir(double zenith_deg, double azimuth_deg) {
-  return direction_from_angles(zenith_deg * kDeg, azimuth_deg * kDeg);
-}
+using testing::direction_deg;
+using testing::kDeg;
+using testing::kPi;
 // Two frames: the flat sea, and a tilted facet normal with another wind angle.
 const SurfaceFrame kFlat = wind_frame({0.0, 1.0, 0.0}, 0.3);
 const SurfaceFrame kTilted = wind_frame({0.2, 0.95, -0.1}, 2.0);
@@ -59,7 +58,7 @@ TEST_CASE("BRDF reciprocity f(L, V) = f(V, L) over a sweep of directions, roughn
         for (const double vz : {0.0, 25.0, 50.0, 80.0, 89.9}) {
           for (const double la : {0.0, 70.0, 200.0}) {
             for (const double va : {15.0, 180.0, 290.0}) {
-              const Vec3 l = dir(lz, la), v = dir(vz, va);
+              const Vec3 l = direction_deg(lz, la), v = direction_deg(vz, va);
               const auto cosine = [&](const Vec3& d) {
                 return d[0] * frame.normal[0] + d[1] * frame.normal[1] + d[2] * frame.normal[2];
               };
@@ -94,7 +93,7 @@ TEST_CASE("mean Fresnel: between F(0 deg) and 1; tends to F(V.N) as sigma^2 -> 0
     for (const double s2 : {1e-8, 1e-4, 0.02, 0.3, 1.0}) {
       for (const double vz : {0.0, 30.0, 60.0, 80.0, 89.0, 89.99}) {
         for (const int order : {1, 4, 16}) {
-          const double f = mean_fresnel(dir(vz, 40), frame, {s2, 0.6 * s2}, order);
+          const double f = mean_fresnel(direction_deg(vz, 40), frame, {s2, 0.6 * s2}, order);
           CAPTURE(s2);
           CAPTURE(vz);
           CAPTURE(order);
@@ -110,7 +109,7 @@ TEST_CASE("mean Fresnel: between F(0 deg) and 1; tends to F(V.N) as sigma^2 -> 0
   // 1e-3 (measured 1.5e-4 at 80°).
   for (const double vz : {0.0, 30.0, 60.0, 80.0}) {
     CAPTURE(vz);
-    const Vec3 v = dir(vz, 20);
+    const Vec3 v = direction_deg(vz, 20);
     const double f0 = fresnel_reflectance(v[1]);
     const double e4 = std::fabs(mean_fresnel(v, kFlat, {1e-4, 7e-5}, 16) / f0 - 1.0);
     const double e5 = std::fabs(mean_fresnel(v, kFlat, {1e-5, 7e-6}, 16) / f0 - 1.0);
@@ -119,7 +118,7 @@ TEST_CASE("mean Fresnel: between F(0 deg) and 1; tends to F(V.N) as sigma^2 -> 0
     if (vz > 0.0) CHECK(e4 / e5 < 11.0);
   }
   // Grazing and smooth: the visible facets are tilted towards V by ~σ, F̄ → 1 as σ → 0.
-  CHECK(mean_fresnel(dir(90, 0), kFlat, {1e-8, 1e-8}, 16) > 0.999);
+  CHECK(mean_fresnel(direction_deg(90, 0), kFlat, {1e-8, 1e-8}, 16) > 0.999);
 }
 
 TEST_CASE("energy: reflected sky <= F_mean x the brightest sky; sun reflectance in [0, 1]") {
@@ -131,7 +130,7 @@ TEST_CASE("energy: reflected sky <= F_mean x the brightest sky; sun reflectance 
   Vec3 brightest{};
   for (int z = 0; z <= 900; ++z) {  // 0.1° × 1°, and the sun's own direction (the maximum)
     for (int a = 0; a < 360; ++a) {
-      const Vec3 l = sky_radiance_rgb(sky, dir(0.1 * z, a));
+      const Vec3 l = sky_radiance_rgb(sky, direction_deg(0.1 * z, a));
       for (std::size_t c = 0; c < 3; ++c) brightest[c] = std::fmax(brightest[c], l[c]);
     }
   }
@@ -143,7 +142,7 @@ TEST_CASE("energy: reflected sky <= F_mean x the brightest sky; sun reflectance 
         CAPTURE(s2);
         CAPTURE(vz);
         CAPTURE(va);
-        const Vec3 v = dir(vz, va);
+        const Vec3 v = direction_deg(vz, va);
         const SlopeVariance s{s2, 0.5 * s2};
         const Vec3 r = reflected_sky(v, kFlat, s, sky, 16);
         const double f = mean_fresnel(v, kFlat, s, 16);
@@ -152,16 +151,18 @@ TEST_CASE("energy: reflected sky <= F_mean x the brightest sky; sun reflectance 
           CHECK(r[c] <= 1.01 * f * brightest[c]);
         }
         for (const double sz : {0.0, 60.0, 89.0}) {
-          const double sun = reflected_sun(dir(sz, 10), kSunAngularRadius, v, kFlat, s, 4);
+          const double sun =
+              reflected_sun(direction_deg(sz, 10), kSunAngularRadius, v, kFlat, s, 4);
           CHECK((sun >= 0.0 && sun <= 1.0));
         }
-        CHECK(reflected_sun(dir(100.0, 10), kSunAngularRadius, v, kFlat, s, 4) == 0.0);
+        CHECK(reflected_sun(direction_deg(100.0, 10), kSunAngularRadius, v, kFlat, s, 4) == 0.0);
       }
     }
   }
   // Away from the mirror direction a smooth sea reflects no sun: 20° off-specular is ~10³σ at
   // σ² = 1e-7, p(ζ) underflows to 0.
-  CHECK(reflected_sun(dir(40, 0), kSunAngularRadius, dir(60, 180), kFlat, {1e-7, 1e-7}, 4) == 0.0);
+  CHECK(reflected_sun(direction_deg(40, 0), kSunAngularRadius, direction_deg(60, 180), kFlat,
+                      {1e-7, 1e-7}, 4) == 0.0);
 }
 
 namespace {

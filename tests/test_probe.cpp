@@ -10,20 +10,13 @@
 
 #include "conformance/render_output.h"
 #include "scene/scene.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-const ExrChannel& channel(const ExrImage& exr, const std::string& name) {
-  for (const ExrChannel& c : exr.channels) {
-    if (c.name == name) return c;
-  }
-  FAIL("no channel " << name);
-  throw std::logic_error("unreachable");
-}
-bool same_bits(float a, float b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
+using testing::channel;
+using testing::same_bits;
 }  // namespace
 
 TEST_CASE("probe == render: every probed pixel has the bits render writes") {

@@ -17,12 +17,13 @@
 #include "raster/rasterizer.h"
 #include "raster/renderer.h"
 #include "scene/scene.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using testing::kDeg;
+using testing::kInfinity;
 
 // The view depth at which the ray through image point (x, y) reaches the plane y = level, +∞ if
 // it never does in front of the camera.

@@ -16,11 +16,12 @@
 #include "core/vec3.h"
 #include "shading/ocean_lighting.h"
 #include "shading/reference_lighting.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 Vec3 in_frame(const SurfaceFrame& f, double x, double n, double y) {
   Vec3 v{};

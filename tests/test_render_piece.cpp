@@ -19,16 +19,16 @@
 #include "scene/scene.h"
 
 #include "temp_dir.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
+using testing::same_bits;
 // A fresh folder per test, named after this file.
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("oceanref_piece_") {}
-};
+using testing::TempDir;
 
-std::string error_of(const std::function<void()>& f) {
+std::string piece_error_of(const std::function<void()>& f) {
   try {
     f();
   } catch (const RenderPieceError& e) {
@@ -38,7 +38,7 @@ std::string error_of(const std::function<void()>& f) {
 }
 
 // A small fast scene with waves, sun and sky (whitecaps on, so every buffer has content).
-Scene small_scene() {
+Scene piece_scene() {
   const nlohmann::json s = nlohmann::json::parse(R"({
     "seed": 7,
     "waves": {"spectrum": {"model": "jonswap", "wind_speed": 9, "fetch": 60000},
@@ -60,12 +60,6 @@ RenderPiece piece_of(const Scene& scene, int tile, int tiles, bool aov) {
   options.aov = aov;
   return render_scene_piece(scene, options);
 }
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
 }  // namespace
 
 TEST_CASE("tiles partition the rows: contiguous, in order, none empty") {
@@ -85,7 +79,7 @@ TEST_CASE("tiles partition the rows: contiguous, in order, none empty") {
 }
 
 TEST_CASE("merged pieces are the whole render, bit for bit, with and without the layers") {
-  const Scene scene = small_scene();
+  const Scene scene = piece_scene();
   TempDir dir;
   for (const bool aov : {false, true}) {
     CAPTURE(aov);
@@ -133,7 +127,7 @@ TEST_CASE("merged pieces are the whole render, bit for bit, with and without the
 }
 
 TEST_CASE("a tile's memory estimate counts its own rows") {
-  const Scene scene = small_scene();
+  const Scene scene = piece_scene();
   RenderOutputOptions options;
   const double whole = render_memory_estimate(scene, options).total();
   options.tiles = 17;
@@ -144,33 +138,33 @@ TEST_CASE("a tile's memory estimate counts its own rows") {
 }
 
 TEST_CASE("bad pieces are refused, naming the file and what is wrong") {
-  const Scene scene = small_scene();
+  const Scene scene = piece_scene();
   TempDir dir;
   const std::string p0 = dir.file("p0.piece"), p1 = dir.file("p1.piece");
   write_render_piece(p0, piece_of(scene, 0, 2, false));
   write_render_piece(p1, piece_of(scene, 1, 2, false));
   const RenderPiece a = read_render_piece(p0), b = read_render_piece(p1);
-  CHECK(error_of([&] { merge_render_pieces(scene, {a, b}, {p0, p1}); }).empty());
-  CHECK(error_of([&] { merge_render_pieces(scene, {a}, {p0}); }) == "tile 1 of 2 is missing");
-  CHECK(error_of([&] {
+  CHECK(piece_error_of([&] { merge_render_pieces(scene, {a, b}, {p0, p1}); }).empty());
+  CHECK(piece_error_of([&] { merge_render_pieces(scene, {a}, {p0}); }) == "tile 1 of 2 is missing");
+  CHECK(piece_error_of([&] {
           merge_render_pieces(scene, {a, a}, {p0, p0});
         }).find("tile 0 again") != std::string::npos);
   Scene other = scene;
   other.canonical += " ";
-  CHECK(error_of([&] {
+  CHECK(piece_error_of([&] {
           merge_render_pieces(other, {a, b}, {p0, p1});
         }).find(p0 + ": rendered from another scene") == 0);
   const RenderPiece c = piece_of(scene, 1, 3, false);
-  CHECK(error_of([&] {
+  CHECK(piece_error_of([&] {
           merge_render_pieces(scene, {a, c}, {p0, "c"});
         }).find("c: its tile count") == 0);
   const RenderPiece d = piece_of(scene, 1, 2, true);
-  CHECK(error_of([&] {
+  CHECK(piece_error_of([&] {
           merge_render_pieces(scene, {a, d}, {p0, "d"});
         }).find("layers") != std::string::npos);
   RenderPiece e = b;
   e.band.unresolved.upwind *= 1.0 + 1e-15;
-  CHECK(error_of([&] {
+  CHECK(piece_error_of([&] {
           merge_render_pieces(scene, {a, e}, {p0, "e"});
         }).find("e: its BRDF roughness") == 0);
 
@@ -182,7 +176,7 @@ TEST_CASE("bad pieces are refused, naming the file and what is wrong") {
   const auto damaged = [&](const std::string& content) {
     const std::string path = dir.file("damaged.piece");
     std::ofstream(path, std::ios::binary) << content;
-    return error_of([&] { read_render_piece(path); });
+    return piece_error_of([&] { read_render_piece(path); });
   };
   CHECK(damaged(bytes).empty());
   CHECK(damaged("").find("not an oceanref render piece") != std::string::npos);

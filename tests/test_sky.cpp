@@ -7,12 +7,13 @@
 
 #include "sky/preetham.h"
 #include "sky/spectral_tables.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using testing::kDeg;
+using testing::kPi;
 }  // namespace
 
 TEST_CASE(

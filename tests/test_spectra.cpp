@@ -9,14 +9,13 @@
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
 #include "spectrum/wavenumber_spectra.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double g = 9.81;
-double relative(double a, double b) {
-  return std::fabs(a - b) / std::fabs(b);
-}
+using testing::kGravity;
+using testing::relative;
 
 Spectrum make(SpectrumModel model, double u = 10.0, double fetch = 5.0e4) {
   SpectrumSettings s;
@@ -83,7 +82,7 @@ TEST_CASE("JONSWAP with gamma = 1 is Pierson-Moskowitz with the same alpha and o
   const Spectrum jonswap_33 = make(SpectrumModel::jonswap);
   CHECK(relative(frequency_spectrum(jonswap_33, jonswap_33.peak_frequency),
                  3.3 * pierson_moskowitz(jonswap_33.peak_frequency, jonswap_33.alpha,
-                                         jonswap_33.peak_frequency, g)) < 1e-15);
+                                         jonswap_33.peak_frequency, kGravity)) < 1e-15);
 }
 
 TEST_CASE("JONSWAP energy relative to PM matches the DNV-RP-C205 factor 1/(1 - 0.287 ln gamma)") {
@@ -95,8 +94,8 @@ TEST_CASE("JONSWAP energy relative to PM matches the DNV-RP-C205 factor 1/(1 - 0
     j.model = SpectrumModel::jonswap;
     j.gamma = gamma;
     const Spectrum jonswap = make_spectrum(j);
-    const double ratio =
-        m0_of(jonswap) / (jonswap.alpha * g * g / (5.0 * std::pow(jonswap.peak_frequency, 4.0)));
+    const double ratio = m0_of(jonswap) / (jonswap.alpha * kGravity * kGravity /
+                                           (5.0 * std::pow(jonswap.peak_frequency, 4.0)));
     CHECK(relative(ratio, 1.0 / (1.0 - 0.287 * std::log(gamma))) < 0.005);
   }
 }
@@ -110,14 +109,15 @@ TEST_CASE("Pierson-Moskowitz: both wind forms and closed-form m0 and Hs = 0.21 U
   const Spectrum s195 = make_spectrum(in);
   for (double w = 0.3; w < 20.0; w *= 1.2) {
     CHECK(relative(frequency_spectrum(s195, w),
-                   pierson_moskowitz(w, kPiersonMoskowitzAlpha, s195.peak_frequency, g)) < 1e-13);
+                   pierson_moskowitz(w, kPiersonMoskowitzAlpha, s195.peak_frequency, kGravity)) <
+          1e-13);
   }
   // m0 = αg²/(5ω_p⁴) exactly; quadrature at 1e−12 must agree to 1e−9.
   const double m0 = m0_of(s195);
-  CHECK(relative(m0, kPiersonMoskowitzAlpha * g * g / (5.0 * std::pow(s195.peak_frequency, 4.0))) <
-        1e-9);
+  CHECK(relative(m0, kPiersonMoskowitzAlpha * kGravity * kGravity /
+                         (5.0 * std::pow(s195.peak_frequency, 4.0))) < 1e-9);
   // Published: Hs ≈ 0.21 U19.5²/g (Pierson & Moskowitz 1964); 0.21 carries 2 digits: 1%.
-  CHECK(relative(4.0 * std::sqrt(m0), 0.21 * 12.0 * 12.0 / g) < 0.01);
+  CHECK(relative(4.0 * std::sqrt(m0), 0.21 * 12.0 * 12.0 / kGravity) < 0.01);
   // The U10 form (eq. 3.40) with U19.5 = 1.026·U10 has the same peak to the 3 digits printed.
   const Spectrum s10 = make(SpectrumModel::pierson_moskowitz, 12.0 / kU19_5PerU10);
   CHECK(relative(s10.peak_frequency, s195.peak_frequency) < 1e-3);
@@ -128,7 +128,8 @@ TEST_CASE("JONSWAP peak frequency matches the closed form 22 (g^2/(U F))^(1/3)")
   // by 2π·3.5/22 = 0.9996 and χ^(1/3−0.33) ≤ 1.031 for χ < 1e4.
   for (const double fetch : {1e3, 1e4, 1e5}) {
     const Spectrum s = make(SpectrumModel::jonswap, 10.0, fetch);
-    CHECK(relative(s.peak_frequency, 22.0 * std::cbrt(g * g / (10.0 * fetch))) < 0.032);
+    CHECK(relative(s.peak_frequency, 22.0 * std::cbrt(kGravity * kGravity / (10.0 * fetch))) <
+          0.032);
   }
 }
 
@@ -148,14 +149,14 @@ TEST_CASE("TMA tends to JONSWAP in deep water; Thompson-Vincent approximates Kit
   }
   // Φ → ω_h²/2 as ω_h → 0 (shallow water): relative gap O(ω_h²) = 1e−6 at ω_h = 1e−3.
   const double depth = 3.0;
-  const double w_small = 1e-3 / std::sqrt(depth / g);
-  CHECK(relative(kitaigorodskii_depth_attenuation(w_small, depth, g), 0.5e-6) < 2e-6);
+  const double w_small = 1e-3 / std::sqrt(depth / kGravity);
+  CHECK(relative(kitaigorodskii_depth_attenuation(w_small, depth, kGravity), 0.5e-6) < 2e-6);
   // Thompson & Vincent's approximation: "less than 4% error" (Hughes 1984, via Alimardanov
   // §2.6.2), read as an absolute error of Φ ∈ [0, 1] over ω_h ∈ [0, 3].
   for (double wh = 0.0; wh <= 3.0; wh += 0.01) {
-    const double w = wh / std::sqrt(depth / g);
-    CHECK(std::fabs(thompson_vincent_depth_attenuation(w, depth, g) -
-                    kitaigorodskii_depth_attenuation(w, depth, g)) < 0.04);
+    const double w = wh / std::sqrt(depth / kGravity);
+    CHECK(std::fabs(thompson_vincent_depth_attenuation(w, depth, kGravity) -
+                    kitaigorodskii_depth_attenuation(w, depth, kGravity)) < 0.04);
   }
 }
 
@@ -163,7 +164,7 @@ TEST_CASE("Donelan energy follows the Donelan et al. 1985 growth law eps = 0.002
   // ε = g²m0/U⁴ (Gamper eq. 3.41). The published law is a separate fit to the same data: 8%.
   for (const double u : {7.0, 10.0, 15.0}) {
     const Spectrum s = make(SpectrumModel::donelan, u, 5.0e4);
-    const double epsilon = g * g * m0_of(s) / std::pow(u, 4.0);
+    const double epsilon = kGravity * kGravity * m0_of(s) / std::pow(u, 4.0);
     CHECK(relative(epsilon, 0.00274 * std::pow(s.inverse_wave_age, -3.3)) < 0.08);
   }
 }
@@ -175,7 +176,7 @@ TEST_CASE("Phillips: m0 = A L^2 / 2 without suppression (closed form)") {
   in.phillips_suppression = 0.0;
   in.alpha = 0.002;
   const Spectrum s = make_spectrum(in);
-  const double L = 10.0 * 10.0 / g;
+  const double L = 10.0 * 10.0 / kGravity;
   CHECK(relative(m0_of(s), 0.002 * L * L / 2.0) < 1e-9);
 }
 
@@ -211,10 +212,11 @@ TEST_CASE("continuity at every branch point") {
   CHECK(relative(frequency_spectrum(j, wp * (1.0 - eps)), frequency_spectrum(j, wp)) < 1e-12);
   CHECK(relative(frequency_spectrum(j, wp * (1.0 + eps)), frequency_spectrum(j, wp)) < 1e-12);
   // Thompson–Vincent at ω_h = 1 and 2, Donelan/Unified γ at Ω_c = 1, α_m at u* = c_m.
-  const double w1 = 1.0 / std::sqrt(2.0 / g);
-  CHECK(std::fabs(thompson_vincent_depth_attenuation(w1 * (1 - eps), 2.0, g) -
-                  thompson_vincent_depth_attenuation(w1 * (1 + eps), 2.0, g)) < 1e-8);
-  CHECK(std::fabs(thompson_vincent_depth_attenuation(2 * w1 * (1 - eps), 2.0, g) - 1.0) < 1e-8);
+  const double w1 = 1.0 / std::sqrt(2.0 / kGravity);
+  CHECK(std::fabs(thompson_vincent_depth_attenuation(w1 * (1 - eps), 2.0, kGravity) -
+                  thompson_vincent_depth_attenuation(w1 * (1 + eps), 2.0, kGravity)) < 1e-8);
+  CHECK(std::fabs(thompson_vincent_depth_attenuation(2 * w1 * (1 - eps), 2.0, kGravity) - 1.0) <
+        1e-8);
   CHECK(std::fabs(donelan_gamma(1.0 - eps) - donelan_gamma(1.0)) < 1e-8);
   CHECK(std::fabs(unified_gamma(1.0 - eps) - unified_gamma(1.0)) < 1e-8);
   CHECK(std::fabs(unified_short_wave_alpha(0.23 * (1 - eps), 0.23) -
@@ -230,8 +232,8 @@ TEST_CASE("continuity at every branch point") {
     return make_spectrum(in);
   };
   const double chi_low = std::pow(11.6 / 0.83, 1.0 / 0.23);  // raw Ω_c = 0.83
-  const double f_low = chi_low * 100.0 / g;
-  for (const double f : {f_low, std::pow(11.6 / 5.0, 1.0 / 0.23) * 100.0 / g}) {
+  const double f_low = chi_low * 100.0 / kGravity;
+  for (const double f : {f_low, std::pow(11.6 / 5.0, 1.0 / 0.23) * 100.0 / kGravity}) {
     const Spectrum a = donelan_at(f * (1.0 - eps));
     const Spectrum b = donelan_at(f * (1.0 + eps));
     // A relative change 1e−9 of fetch moves Ω_c by ~2e−10; S near the peak by < 1e−8.
@@ -249,8 +251,8 @@ TEST_CASE("continuity at every branch point") {
   };
   // Unified: Ω_c = 5 where tanh((χ/χ0)^0.4) = (5/0.84)^(−1/0.75).
   const double chi5 = 2.2e4 * std::pow(std::atanh(std::pow(5.0 / 0.84, -1.0 / 0.75)), 2.5);
-  const Spectrum ua = unified_at(chi5 * 100.0 / g * (1.0 - eps));
-  const Spectrum ub = unified_at(chi5 * 100.0 / g * (1.0 + eps));
+  const Spectrum ua = unified_at(chi5 * 100.0 / kGravity * (1.0 - eps));
+  const Spectrum ub = unified_at(chi5 * 100.0 / kGravity * (1.0 + eps));
   for (const double k : {1.0, 10.0, 400.0}) {
     CHECK(relative(wavenumber_spectrum(ua, k), wavenumber_spectrum(ub, k)) < 1e-7);
   }

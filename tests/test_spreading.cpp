@@ -8,12 +8,13 @@
 #include "spectrum/model.h"
 #include "spectrum/moments.h"
 #include "spectrum/spreading.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-constexpr double g = 9.81;
+using testing::kGravity;
+using testing::kPi;
 
 // ∫_{−π}^{π} D(ω, θ) dθ by adaptive quadrature at 1e−13 (splits at the peak and ±π/2).
 double integral_over_theta(const Spectrum& s, double omega) {
@@ -123,17 +124,17 @@ TEST_CASE("cos-2s: exactly 0 opposite the wind, accurate behind it, continuous a
 
 TEST_CASE("spread laws: published constants and branch points") {
   // Mitsuyasu s is continuous at ω_p (both branches give s_p).
-  const double sp = mitsuyasu_peak_spread(1.0, 10.0, g);
-  CHECK(sp == doctest::Approx(11.5 * std::pow(10.0 / g, -2.5)).epsilon(1e-15));
+  const double sp = mitsuyasu_peak_spread(1.0, 10.0, kGravity);
+  CHECK(sp == doctest::Approx(11.5 * std::pow(10.0 / kGravity, -2.5)).epsilon(1e-15));
   CHECK(std::fabs(mitsuyasu_spread(1.0 - 1e-12, 1.0, sp) - mitsuyasu_spread(1.0, 1.0, sp)) < 1e-9);
   // Hasselmann et al. 1980 and Gamper eq. 3.57 jump from 6.97 to 9.77 at ω_p by design.
-  CHECK(hasselmann_spread(1.0 - 1e-12, 1.0, 10.0, g) == doctest::Approx(6.97).epsilon(1e-9));
-  CHECK(hasselmann_spread(1.0, 1.0, 10.0, g) == 9.77);
+  CHECK(hasselmann_spread(1.0 - 1e-12, 1.0, 10.0, kGravity) == doctest::Approx(6.97).epsilon(1e-9));
+  CHECK(hasselmann_spread(1.0, 1.0, 10.0, kGravity) == 9.77);
   CHECK(gamper_spread(1.0 - 1e-12, 1.0) == doctest::Approx(6.97).epsilon(1e-9));
   CHECK(gamper_spread(1.0, 1.0) == 9.77);
   // μ = −2.33 − 1.45(Uω_p/g − 1.17): at Uω_p/g = 1.17, μ = −2.33 exactly.
-  CHECK(hasselmann_spread(2.0, 1.17 * g / 10.0 * 1.0, 10.0, g) / 9.77 ==
-        doctest::Approx(std::pow(2.0 / (1.17 * g / 10.0), -2.33)).epsilon(1e-12));
+  CHECK(hasselmann_spread(2.0, 1.17 * kGravity / 10.0 * 1.0, 10.0, kGravity) / 9.77 ==
+        doctest::Approx(std::pow(2.0 / (1.17 * kGravity / 10.0), -2.33)).epsilon(1e-12));
   // Mastin: 9.77 on both sides of f_m (continuous).
   CHECK(std::fabs(mastin_spread(1.0 - 1e-12, 1.0) - mastin_spread(1.0, 1.0)) < 1e-9);
   // Horvath swell: 16ξ² tanh(ω_p/ω), 16 tanh(1) ξ² at the peak.

@@ -17,7 +17,7 @@
 using namespace oceanref;
 
 namespace {
-Spectrum jonswap() {
+Spectrum stages_spectrum() {
   SpectrumSettings in;
   in.model = SpectrumModel::jonswap;
   in.wind_direction = 0.4;
@@ -35,7 +35,7 @@ const StageChannel& channel(const std::vector<StageChannel>& channels, const std
 }  // namespace
 
 TEST_CASE("stage spectrum: Theta dk^2 per cell sums to the band's m0") {
-  const Spectrum s = jonswap();
+  const Spectrum s = stages_spectrum();
   // A grid fine enough for the discrete sum to converge (test_waves: 2e-3 at L = 2000 m, N = 256)
   // with its band ending at the Nyquist wavenumber πN/L = 0.4 rad/m.
   const double size = 2000.0;
@@ -77,7 +77,7 @@ TEST_CASE("stage spectrum: Theta dk^2 per cell sums to the band's m0") {
 }
 
 TEST_CASE("stage h0: the draws of eq. 4.2, with E|h0|^2 = 2 Theta dk^2") {
-  const Spectrum s = jonswap();
+  const Spectrum s = stages_spectrum();
   const int n = 64;
   const double size = 300.0;
   const Pattern p{2, size, n, cascade_bands({size}, n, true, 1e9)[0]};
@@ -116,7 +116,7 @@ TEST_CASE("stage h0: the draws of eq. 4.2, with E|h0|^2 = 2 Theta dk^2") {
 }
 
 TEST_CASE("stage omega: omega = sqrt(g k) (deep water) with k = (alpha, beta) 2 pi / L") {
-  const Spectrum s = jonswap();
+  const Spectrum s = stages_spectrum();
   const int n = 32;
   const double size = 100.0;
   const PatternSpectrum grid = realize_pattern(s, 1, {0, size, n, {}});
@@ -146,7 +146,7 @@ TEST_CASE("stage omega: omega = sqrt(g k) (deep water) with k = (alpha, beta) 2 
 }
 
 TEST_CASE("stage hkt: eq. 4.7 at every entry, Hermitian, and its inverse DFT is the height field") {
-  const Spectrum s = jonswap();
+  const Spectrum s = stages_spectrum();
   const int n = 16;
   const double size = 60.0;
   const double time = 3.7;

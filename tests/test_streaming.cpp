@@ -24,9 +24,7 @@
 using namespace oceanref;
 
 namespace {
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("oceanref_streaming_") {}
-};
+using testing::TempDir;
 
 std::vector<char> bytes_of(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -34,7 +32,7 @@ std::vector<char> bytes_of(const std::string& path) {
 }
 
 // A small scene with waves, sun, sky and whitecaps, in the given accuracy.
-Scene small_scene(const std::string& accuracy) {
+Scene streaming_scene(const std::string& accuracy) {
   nlohmann::json s = nlohmann::json::parse(R"({
     "seed": 5,
     "waves": {"spectrum": {"model": "jonswap", "wind_speed": 9, "fetch": 60000},
@@ -59,7 +57,7 @@ TEST_CASE("a render streamed in bands writes the bytes of the whole render") {
        {std::pair{"fast", false}, std::pair{"fast", true}, std::pair{"reference", true}}) {
     const std::string accuracy = mode.first;  // (no structured binding: CAPTURE is a lambda)
     const bool aov = mode.second;
-    const Scene scene = small_scene(accuracy);
+    const Scene scene = streaming_scene(accuracy);
     CAPTURE(accuracy);
     CAPTURE(aov);
     RenderOutputOptions options;
@@ -98,7 +96,7 @@ TEST_CASE("a render streamed in bands writes the bytes of the whole render") {
 }
 
 TEST_CASE("the memory estimate of a streamed render counts one band") {
-  Scene scene = small_scene("fast");
+  Scene scene = streaming_scene("fast");
   scene.image.width = 4096;
   scene.image.height = 4096;
   RenderOutputOptions options;
@@ -117,7 +115,7 @@ TEST_CASE("the memory estimate of a streamed render counts one band") {
 }
 
 TEST_CASE("the median lighting error is the lower edge of its 2^-8 bin") {
-  const Scene scene = small_scene("reference");
+  const Scene scene = streaming_scene("reference");
   RenderOutputOptions options;
   options.threads = 2;
   const RenderedScene r = render_scene(scene, options);

@@ -31,23 +31,15 @@
 #include "io/sha256.h"
 
 #include "temp_dir.h"
+#include "test_support.h"
 
 using namespace oceanref;
 
 namespace {
+using testing::channel;
+using testing::same_bits;
 // A fresh folder per test, named after this file.
-struct TempDir : testing::TempDir {
-  TempDir() : testing::TempDir("oceanref_streaming_io_") {}
-  // Every entry of the folder (a temporary left behind shows here).
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : std::filesystem::directory_iterator(path)) {
-      names.push_back(e.path().filename().string());
-    }
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-};
+using testing::TempDir;
 
 std::string file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -72,11 +64,6 @@ struct Random {
     return f;
   }
 };
-
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
-}
 
 // ---- EXR helpers ---------------------------------------------------------------------------
 
@@ -158,13 +145,6 @@ void write_in_bands(const std::string& path, const ExrImage& image, int band) {
   }
   CHECK(writer.rows_written() == image.height);
   writer.finish();
-}
-
-const ExrChannel& channel(const ExrImage& image, const std::string& name) {
-  for (const ExrChannel& c : image.channels) {
-    if (c.name == name) return c;
-  }
-  throw std::runtime_error("no channel " + name);
 }
 
 // ---- PNG helpers ---------------------------------------------------------------------------

@@ -15,7 +15,7 @@
 using namespace oceanref;
 
 namespace {
-Scene tiny_scene() {
+Scene study_scene() {
   return load_scene(std::string(OCEANREF_SOURCE_DIR) +
                     "/reference/scenes/golden/mastin_spread_direct_tiny.json");
 }
@@ -94,7 +94,7 @@ TEST_CASE("lighting pixels: an image against itself has zero error; bad input na
 }
 
 TEST_CASE("study: FFT grids equal direct summation at the nodes; interpolation errors ordered") {
-  const Scene scene = tiny_scene();
+  const Scene scene = study_scene();
   const FftVsDirect r = study_fft_vs_direct(scene, 2);
   CHECK(r.points == 8);
   // Fields of O(1) m from a 16² inverse DFT: both sides are sums of the same 256 terms, so they

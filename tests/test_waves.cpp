@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "spectrum/moments.h"
+#include "test_support.h"
 #include "waves/direct_sum.h"
 #include "waves/fft.h"
 #include "waves/fields.h"
@@ -15,7 +16,7 @@
 using namespace oceanref;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
+using testing::kPi;
 
 Spectrum jonswap(double wind_direction = 0.3) {
   SpectrumSettings in;
