@@ -9,8 +9,8 @@
 #       test ran it with 2), the clang -O2 build (build-clang/, tools/compare_compilers.sh) with 2
 #       threads, every scene; the gcc build under glibc's no-FMA/AVX2 variants on the two
 #       sensitive scenes.
-#   tools/determinism_matrix.sh          the cross-build matrix (five
-#       builds and the aarch64 sysroot), run by hand before a change to the numerics lands:
+#   tools/determinism_matrix.sh          the cross-build matrix (five builds and the aarch64
+#       sysroot), run by hand before a change to the numerics lands:
 #       gcc -O3 (Release) with 1 and 2 threads; clang -O2 (RelWithDebInfo), gcc -O3
 #       -march=x86-64-v3 (AVX2 and FMA available to the compiler), clang -O3 -march=native with 2
 #       threads; gcc -O0 (Debug) with 2 threads on the two sensitive scenes (default_small, the
@@ -63,13 +63,16 @@ program_only=(-DOCEANREF_PYTHON=OFF -DBUILD_TESTING=OFF)
 CC=clang CXX=clang++ bash tools/build.sh build-clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "${program_only[@]}"  # -O2 -g, as tools/compare_compilers.sh configures it
 if [ "$ci" -eq 1 ]; then
-  for dir in build build-clang; do bash tools/check_binary.sh "$dir" || failures=$((failures + 1)); done
+  for dir in build build-clang; do
+    bash tools/check_binary.sh "$dir" || failures=$((failures + 1))
+  done
   verify "build, 1 thread" 1 build/src/oceanref
   verify "build-clang, 2 threads" 2 build-clang/src/oceanref
   only=("${sensitive[@]}")
   GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2_Usable,-AVX2,-FMA,-AVX,-FMA4 \
     verify "build, glibc without AVX/AVX2/FMA variants" 2 build/src/oceanref
-  [ "$failures" -eq 0 ] && echo "determinism: all identical (CI subset; the cross-build matrix: tools/determinism_matrix.sh)"
+  [ "$failures" -eq 0 ] &&
+    echo "determinism: all identical (CI subset; the cross builds: tools/determinism_matrix.sh)"
   exit $((failures > 0))
 fi
 bash tools/build.sh build-O0 -DCMAKE_BUILD_TYPE=Debug "${program_only[@]}"  # -g, no optimization

@@ -5,8 +5,8 @@
 #                              build in build/, then the gcc/clang comparison
 #                              (tools/compare_compilers.sh)
 #   tools/test.sh --sanitize   ctest on an AddressSanitizer + UndefinedBehaviorSanitizer build
-#                              in build-asan/: clang (it builds ~2.3x faster than gcc with the
-#                              sanitizers, and so the clang build runs the unit tests too), Debug
+#                              in build-asan/: clang (with the sanitizers it builds ~2.3x faster
+#                              than gcc; it is also the clang build that runs the unit tests), Debug
 #                              (assertions on) at -O1 as the sanitizers' documentation recommends;
 #                              the golden test on default_small only. The same build holds the
 #                              libFuzzer targets (tools/fuzz.sh --build build-asan).
