@@ -415,7 +415,7 @@ TEST_CASE(
   const std::vector<double> noise = mastin_white_noise(3, p);
   for (const double v : noise) CHECK(std::fabs(v) < std::sqrt(3.0));
   // The filtered spectrum keeps the real image's Hermitian symmetry: h(k, t) = h(−k, t)*.
-  const PatternSpectrum r = realize_pattern_mastin(s, 3, p, 2);
+  const PatternSpectrum r = realize_pattern_mastin(s, {}, {}, 3, p, 2);
   const std::vector<Complex> h = spectrum_at_time(r, 5.0);
   for (int b = 0; b < n; ++b) {
     for (int a = 0; a < n; ++a) {
@@ -430,7 +430,7 @@ TEST_CASE(
   }
   // Mean sample variance over seeds → ΣΘΔk² in the band, within 4 standard errors.
   const Estimate e = mean_height_variance(
-      400, [&](std::uint64_t seed) { return realize_pattern_mastin(s, seed, p, 1); });
+      400, [&](std::uint64_t seed) { return realize_pattern_mastin(s, {}, {}, seed, p, 1); });
   const double expected = band_energy(s, p);
   CAPTURE(e.mean);
   CAPTURE(expected);

@@ -232,7 +232,7 @@ std::vector<ExrPart> stage_image(const Scene& scene, const Ocean& ocean, Stage s
       add_pattern_attributes(part.image, s->pattern, c.choppiness);
       std::map<std::string, std::vector<double>> unused;
       for (const StageChannel& channel :
-           stage_channels(ocean.spectrum, *s, stage, scene.time, threads)) {
+           stage_channels(ocean.spectrum, *s, stage, scene.time, threads, ocean.filter)) {
         add_channel(part.image, unused, name + "." + channel.name, channel.unit, channel.values);
       }
       parts.push_back(std::move(part));

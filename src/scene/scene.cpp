@@ -59,6 +59,11 @@ const std::vector<std::string>& scene_key_paths() {
       "waves.foam.time_step",
       "waves.foam.steps",
       "waves.realization",
+      "waves.mastin.filter",
+      "waves.mastin.fractal_dimension",
+      "waves.mastin.animation",
+      "waves.mastin.dominant_phase_rate",
+      "waves.mastin.background_phase_rate",
       "camera.position",
       "camera.look_at",
       "camera.up",
@@ -632,6 +637,16 @@ std::string foam_sequence_inert(const Scene& s) {
   return s.foam.steps == 0 ? "waves.foam.steps is 0 (the instantaneous foam indicator)" : "";
 }
 
+std::string mastin_inert(const Scene& s) {
+  return s.waves.realization == Realization::mastin ? "" : "waves.realization is not mastin";
+}
+std::string mastin_shift_inert(const Scene& s) {
+  if (const std::string r = mastin_inert(s); !r.empty()) return r;
+  return s.waves.mastin.animation == MastinAnimation::constant_shift
+             ? ""
+             : "waves.mastin.animation is not constant_shift";
+}
+
 const std::vector<KeyUse>& key_uses() {
   static const std::vector<KeyUse> uses{
       {"waves.spectrum.fetch",
@@ -706,6 +721,17 @@ const std::vector<KeyUse>& key_uses() {
        [](const Scene& s) -> std::string {
          return any_choppiness(s.waves, true) ? "" : "no cascade has positive choppiness";
        }},
+      {"waves.mastin.filter", mastin_inert},
+      {"waves.mastin.animation", mastin_inert},
+      {"waves.mastin.fractal_dimension",
+       [](const Scene& s) -> std::string {
+         if (const std::string r = mastin_inert(s); !r.empty()) return r;
+         return s.waves.mastin.filter == MastinFilter::spectrum
+                    ? "waves.mastin.filter is spectrum, not a power law"
+                    : "";
+       }},
+      {"waves.mastin.dominant_phase_rate", mastin_shift_inert},
+      {"waves.mastin.background_phase_rate", mastin_shift_inert},
       {"waves.foam.steps", foam_inert},
       {"waves.foam.decay", foam_sequence_inert},
       {"waves.foam.time_step", foam_sequence_inert},
@@ -798,6 +824,18 @@ Scene parse_scene(const json& document) {
       parse_choppiness(waves, w.sizes.size(), waves.boolean("allow_positive_choppiness", false));
   w.band_partitioning = waves.boolean("band_partitioning", true);
   w.realization = choice(waves, "realization", kRealizations, "gaussian");
+  if (waves.has("mastin")) {
+    const Section mastin(waves.at("mastin"), "waves.mastin");
+    MastinSettings& m = w.mastin;
+    m.filter = choice(mastin, "filter", kMastinFilters, "spectrum");
+    // D in (2, 3): a surface's fractal dimension; the ends make H = 1 or 0.
+    m.fractal_dimension = mastin.number("fractal_dimension", m.fractal_dimension, 2.01, 2.99);
+    m.animation = choice(mastin, "animation", kMastinAnimations, "dispersion");
+    m.dominant_phase_rate =
+        mastin.number("dominant_phase_rate", m.dominant_phase_rate, 0.0, 1e3, " rad/s");
+    m.background_phase_rate =
+        mastin.number("background_phase_rate", m.background_phase_rate, 0.0, 1e3, " rad/s");
+  }
   if (w.band_partitioning) {
     for (std::size_t i = 1; i < w.sizes.size(); ++i) {
       if (!(w.sizes[i] < w.sizes[i - 1])) {

@@ -28,7 +28,10 @@ double wave_grid_bytes(const WaveSettings& settings) {
 
 Ocean realize_ocean(const WaveSettings& settings, int threads) {
   const ReferenceFpEnvironment fp;
-  Ocean ocean{make_spectrum(settings.spectrum), {}};
+  Ocean ocean{make_spectrum(settings.spectrum), {}, {}};
+  if (settings.realization == Realization::mastin) {
+    ocean.filter = make_mastin_filter(ocean.spectrum, settings.mastin);
+  }
   const double k_max = settings.minimum_wavelength > 0.0
                            ? 2.0 * std::numbers::pi / settings.minimum_wavelength
                            : std::numeric_limits<double>::infinity();
@@ -42,7 +45,8 @@ Ocean realize_ocean(const WaveSettings& settings, int threads) {
   // parallel loop, and the Mastin transform is the same for any thread count).
   const auto realize = [&](const Pattern& p) {
     return settings.realization == Realization::mastin
-               ? realize_pattern_mastin(ocean.spectrum, settings.seed, p, 1)
+               ? realize_pattern_mastin(ocean.spectrum, settings.mastin, ocean.filter,
+                                        settings.seed, p, 1)
                : realize_pattern(ocean.spectrum, settings.seed, p);
   };
   parallel_for(count, threads, [&](int i) {

@@ -12,6 +12,7 @@
 #include "waves/direct_sum.h"
 #include "waves/fields.h"
 #include "waves/interpolation.h"
+#include "waves/mastin.h"
 #include "waves/realization.h"
 #include "waves/surface.h"
 
@@ -27,6 +28,7 @@ inline constexpr std::array<Choice<Realization>, 2> kRealizations{{
 struct WaveSettings {
   std::uint64_t seed = 1;
   Realization realization = Realization::gaussian;
+  MastinSettings mastin;  // the filter and animation of the mastin realization
   SpectrumSettings spectrum;
   std::vector<double> sizes{1000.0};    // L_i [m], decreasing when band-partitioned
   int resolution = 256;                 // N_h: slopes and derivatives of D
@@ -47,6 +49,8 @@ struct CascadeSpectra {
 struct Ocean {
   Spectrum spectrum;
   std::vector<CascadeSpectra> cascades;
+  // The filter whose power Θ_f the mastin realization drew h0 from (the spectrum's Θ otherwise).
+  MastinFilterModel filter;
 };
 
 // Bytes the wave grids of `settings` need: per cell of each cascade's two grids the frozen

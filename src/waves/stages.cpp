@@ -19,7 +19,8 @@ std::vector<double> cell_variances(const Spectrum& spectrum, const Pattern& p) {
 }
 
 std::vector<StageChannel> stage_channels(const Spectrum& spectrum, const PatternSpectrum& s,
-                                         Stage stage, double time, int threads) {
+                                         Stage stage, double time, int threads,
+                                         const MastinFilterModel& filter) {
   const ReferenceFpEnvironment fp;
   const Pattern& p = s.pattern;
   const int n = p.resolution;
@@ -37,7 +38,9 @@ std::vector<StageChannel> stage_channels(const Spectrum& spectrum, const Pattern
   switch (stage) {
     case Stage::spectrum: {
       StageChannel theta{"theta", "m^4", std::vector<double>(cells)};
-      StageChannel variance{"variance", "m^2", cell_variances(spectrum, p)};
+      const bool power_law = filter.filter != MastinFilter::spectrum;
+      StageChannel variance{"variance", "m^2",
+                            power_law ? std::vector<double>(cells) : cell_variances(spectrum, p)};
       StageChannel in_band{"in_band", "1", std::vector<double>(cells)};
       for (int b = 0; b < n; ++b) {
         for (int a = 0; a < n; ++a) {
@@ -45,8 +48,9 @@ std::vector<StageChannel> stage_channels(const Spectrum& spectrum, const Pattern
           const double kx = wave_index(a, n) * dk;
           const double kz = wave_index(b, n) * dk;
           const double k = math::hypot(kx, kz);
-          theta.values[i] = k > 0.0 ? wavevector_spectrum(spectrum, kx, kz) : 0.0;
+          theta.values[i] = k > 0.0 ? mastin_filter_power(spectrum, filter, kx, kz) : 0.0;
           in_band.values[i] = k > 0.0 && p.band.contains(k) ? 1.0 : 0.0;
+          if (power_law) variance.values[i] = in_band.values[i] * theta.values[i] * dk * dk;
         }
       }
       return {std::move(theta), std::move(variance), std::move(in_band)};

@@ -13,6 +13,7 @@
 
 #include "core/complex.h"
 #include "spectrum/model.h"
+#include "waves/mastin.h"
 #include "waves/realization.h"
 
 namespace oceanref {
@@ -30,12 +31,15 @@ struct StageChannel {
 // The channels of one stage (not `fields`) on the grid of `s`:
 //   spectrum: theta = Θ(k) [m^4] at every entry (0 at k = 0); variance = Θ(k)Δk² [m^2] where h0
 //             is drawn (k ≠ 0 inside the pattern's band), else 0; in_band = 1 there, else 0;
+//             with a power-law `filter` (Mastin's Figs. 2–3) Θ is that filter's power Θ_f;
 //   h0:       h0.re, h0.im [m] (the frozen draw of realize_ocean: eq. 4.2 or Mastin's filter);
-//   omega:    omega = ω(|k|) [rad/s] from the dispersion relation, kx, kz, k [rad/m];
+//   omega:    omega = ω(|k|) [rad/s] from the dispersion relation (for Mastin's constant-shift
+//             animation, the phase rate it uses instead), kx, kz, k [rad/m];
 //   hkt:      hkt.re, hkt.im [m] = ½h0(k)e^{−iωt} + ½h0(−k)* e^{iωt} (eq. 4.7) at `time` [s].
 // Throws std::invalid_argument for Stage::fields.
 std::vector<StageChannel> stage_channels(const Spectrum& spectrum, const PatternSpectrum& s,
-                                         Stage stage, double time, int threads);
+                                         Stage stage, double time, int threads,
+                                         const MastinFilterModel& filter = {});
 
 // Θ(k)Δk² of every entry of a pattern where h0 is drawn (see initial_amplitude), else 0.
 std::vector<double> cell_variances(const Spectrum& spectrum, const Pattern& p);
