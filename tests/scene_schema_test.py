@@ -172,7 +172,17 @@ def numeric_checks(path, s, integer):
 
 for path, s in leaves(schema):
     if path == "objects":
-        expect(path, [], False)
+        # An array of objects (parsed here, not loaded: `fields` reads no OBJ file).
+        expect(path, [], True)
+        expect(path, [{"obj": "buoy.obj", "position": [0, 0, 10], "rotation_deg": [0, 45, 0],
+                       "scale": 2, "material": {"albedo": [0.8, 0.2, 0.1]}}], True)
+        expect(path, [{"position": [0, 0, 10]}], False)  # no obj
+        expect(path, [{"obj": ""}], False)
+        expect(path, [{"obj": "buoy.obj", "zz_unknown": 1}], False)
+        expect(path, [{"obj": "buoy.obj", "scale": 0}], False)
+        expect(path, [{"obj": "buoy.obj", "rotation_deg": [0, 361, 0]}], False)
+        expect(path, [{"obj": "buoy.obj", "material": {"albedo": [0.5, 1.5, 0.5]}}], False)
+        expect(path, [{"obj": "buoy.obj"}] * 65, False)
         continue
     kind = s.get("type")
     if "enum" in s:

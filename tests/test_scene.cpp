@@ -98,8 +98,8 @@ TEST_CASE("scene: every bad value is rejected with its JSON path") {
   s["waves"]["spreading"] = json::parse(R"({"model": "donelan", "swell": 0.5})");
   CHECK(error_path(s) == "waves.spreading.swell");
   s = minimal();
-  s["objects"] = json::array();
-  CHECK(error_path(s) == "objects");
+  s["objects"] = json::array({json::object()});  // an object without its OBJ file
+  CHECK(error_path(s) == "objects[0].obj");
   s = minimal();
   s["camera"] = json::parse(R"({"position": [0, 5, 0], "look_at": [0, 5, 0]})");
   CHECK(error_path(s) == "camera");

@@ -162,6 +162,8 @@ std::vector<Row> reach_rows() {
       changes("render.max_samples_per_pixel", 9, kPixels,
               ctx(R"({"render": {"pixel_tolerance": 1e-3}})")),
       changes("render.footprint_filtering", true, kPixels),
+      // The ray tracer on the same grid: the same surfaces, other rounding of the weights.
+      changes("render.renderer", "raytrace", kPixels),
       {"render.tone_key", 0.3, json::object(), Effect::preview},
       {"render.tone_white", 2.0, json::object(), Effect::preview},
   };

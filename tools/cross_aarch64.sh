@@ -57,7 +57,7 @@ fi
 # --- arm64 sysroot --------------------------------------------------------------------------
 # The -dev packages the build needs (header-only ones are architecture-independent, but CMake
 # looks for packages only in the sysroot).
-dev_packages=(libopenexr-dev libimath-dev zlib1g-dev libfftw3-dev
+dev_packages=(libopenexr-dev libimath-dev zlib1g-dev libfftw3-dev libtinyobjloader-dev
               nlohmann-json3-dev libglm-dev libcli11-dev doctest-dev)
 # Provided by the cross toolchain (/usr/aarch64-linux-gnu) or not needed to link: not followed.
 toolchain_re='^(libc6|libc6-dev|libc-dev-bin|libgcc-s1|libgcc-[0-9]+-dev|libstdc\+\+6|libstdc\+\+-[0-9]+-dev|gcc-[0-9]+-base|libcrypt1|libcrypt-dev|libnsl2|libnsl-dev|linux-libc-dev|rpcsvc-proto|libtirpc[0-9a-z-]*|libgomp1|libatomic1|libasan[0-9]+|libubsan[0-9]+|libtsan[0-9]+|liblsan[0-9]+|libhwasan[0-9]+|libitm[0-9]+|debconf|dpkg|perl-base|install-info)$'

@@ -7,8 +7,8 @@
 #   build-fuzz/tests/fuzz/oceanref_fuzz_<target> FILE
 # and, once fixed, add it to tests/fuzz/regressions/<target>/ (tests/fuzz/README.md).
 #
-#   tools/fuzz.sh [--build DIR] [SECONDS] [TARGET...]   (targets: scene cli exr piece; default
-#                                                        all four)
+#   tools/fuzz.sh [--build DIR] [SECONDS] [TARGET...]   (targets: scene cli exr piece obj; default
+#                                                        all five)
 # --build DIR: an existing clang build configured with -DOCEANREF_FUZZ=ON instead of build-fuzz/
 # (CI uses the sanitizer build, tools/test.sh --sanitize, which holds the fuzz targets too).
 set -euo pipefail
@@ -24,7 +24,7 @@ fi
 seconds=${1:-30}
 shift $(($# > 0 ? 1 : 0))
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene cli exr piece)
+[ ${#targets[@]} -gt 0 ] || targets=(scene cli exr piece obj)
 case $seconds in '' | *[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number, got '$seconds'" >&2; exit 2 ;; esac
 
 kiss=${OCEANREF_KISSFFT_DIR:-$PWD/build/_deps/kissfft-src}

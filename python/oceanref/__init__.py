@@ -137,7 +137,7 @@ def fields_sha256(values):
 
 
 def render(scene, threads=0, spp=None, aov=False, lighting_error=False, samples=False,
-           renderer="raster", max_memory=8 * 2**30):
+           renderer=None, max_memory=8 * 2**30):
     """The reference image of a scene: float64 array (height, width, 3) of linear radiance
     [cd/m² per linear sRGB channel, D65], the values behind ``oceanref render -o``'s R, G, B
     (equal bit for bit after float32 rounding; pixel_sha256 gives the EXR's hash).
@@ -154,12 +154,14 @@ def render(scene, threads=0, spp=None, aov=False, lighting_error=False, samples=
     samples (H·S, W·S, 3), every sample of the fixed S×S grid (sample (c, r) at image position
     ((c + ½)/S, (r + ½)/S); each pixel the mean of its S×S samples), as ``oceanref render
     --samples``; not with render.pixel_tolerance. renderer: "raster" or "raytrace" (the
-    height-field ray tracer on the same grid, as ``oceanref render --renderer``). max_memory:
+    height-field ray tracer on the same grid, which also reflects the scene's objects, as
+    ``oceanref render --renderer``); None: the scene's render.renderer. max_memory:
     bytes; a render whose estimated buffers need more raises RuntimeError (as ``oceanref render
     --max-memory``).
     """
     result = _core._render(_scene(scene), threads, spp, aov, bool(lighting_error),
-                           bool(samples), str(renderer), float(max_memory))
+                           bool(samples), "" if renderer is None else str(renderer),
+                           float(max_memory))
     return result if aov or samples else result["radiance"]
 
 

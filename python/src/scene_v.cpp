@@ -10,6 +10,7 @@
 
 #include "common.h"
 #include "conformance/render_output.h"
+#include "conformance/scene_objects.h"
 #include "io/exr.h"
 #include "io/sha256.h"
 #include "scene/scene.h"
@@ -132,7 +133,9 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
                         "the fixed grid's samples only: not with render.pixel_tolerance "
                         "(adaptive sampling)");
   }
-  const Renderer visibility = parse_choice<ArgumentError>(kRenderers, "renderer", renderer);
+  if (!renderer.empty()) {
+    scene.image.renderer = parse_choice<ArgumentError>(kRenderers, "renderer", renderer);
+  }
   RenderOutputOptions options;
   options.aov = aov;
   options.keep_samples = samples;
@@ -141,11 +144,12 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
   {
     py::gil_scoped_release release;
     const Ocean ocean = realize_ocean(scene.waves, threads);
+    const SceneObjects objects = load_scene_objects(scene);
     RenderJob job = scene_render_job(scene, ocean, threads);
+    job.objects = &objects;
     job.estimate_fast_error = lighting_error;  // as `oceanref render --lighting-error`
     job.layers = aov;
     job.keep_samples = samples;  // as `oceanref render --samples`
-    job.renderer = visibility;   // as `oceanref render --renderer`
     const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
     image = render(job, unresolved);
   }
@@ -261,7 +265,7 @@ void bind_scene(py::module_& m) {
       py::arg("scene"), py::arg("time") = py::none(), py::arg("threads") = 0);
   m.def("_render", &render_scene, py::arg("scene"), py::arg("threads") = 0,
         py::arg("spp") = py::none(), py::arg("aov") = false, py::arg("lighting_error") = false,
-        py::arg("samples") = false, py::arg("renderer") = "raster",
+        py::arg("samples") = false, py::arg("renderer") = "",
         py::arg("max_memory") = kDefaultMaxMemory);
   m.def("_read_exr", &read_exr_file, py::arg("path"));
 }

@@ -139,7 +139,7 @@ std::function<void(double)> progress_bar() {
 
 std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   struct Flags {
-    std::string scene, output, png, max_memory, tile, samples, renderer = "raster";
+    std::string scene, output, png, max_memory, tile, samples, renderer;
     int threads = 0;
     int spp = 0;
     bool aov = false;
@@ -176,9 +176,11 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
                   "(README, 'Same samples or converged'); not with render.pixel_tolerance or "
                   "--tile");
   cmd->add_option("--renderer", f->renderer,
-                  "raster (the scanline rasterizer, default) or raytrace (Mastin's height-field "
-                  "ray tracer on the same displaced grid: the second renderer, to check the "
-                  "first's visibility; README, 'Two renderers'); not with --tile");
+                  "raster (the scanline rasterizer) or raytrace (Mastin's height-field ray "
+                  "tracer on the same displaced grid: the second renderer, to check the first's "
+                  "visibility, and the one that reflects the scene's objects in the sea; README, "
+                  "'Two renderers'); default: the scene's render.renderer (raster); not with "
+                  "--tile");
   cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
   cmd->add_option("--tile", f->tile,
                   "I/N: render only tile I of N (pixel rows I*H/N to (I+1)*H/N - 1, 0 <= I < N "
@@ -194,8 +196,10 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     if (!f->tile.empty() && !f->png.empty()) {
       throw UsageError("--png", "not with --tile (merge the pieces, then ask merge for --png)");
     }
-    options.renderer = parse_choice<UsageError>(kRenderers, "--renderer", f->renderer);
-    if (!f->tile.empty() && options.renderer != Renderer::raster) {
+    if (!f->renderer.empty()) {
+      options.renderer = parse_choice<UsageError>(kRenderers, "--renderer", f->renderer);
+    }
+    if (!f->tile.empty() && options.renderer && *options.renderer != Renderer::raster) {
       throw UsageError("--renderer", "not with --tile (the pieces are rasterized)");
     }
     if (!f->tile.empty() && !f->samples.empty()) {

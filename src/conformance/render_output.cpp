@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "conformance/provenance.h"
+#include "conformance/scene_objects.h"
 #include "core/check.h"
 #include "core/format.h"
 #include "core/math.h"
@@ -258,6 +259,7 @@ ExrImage render_exr_header(const Scene& scene, const SlopeVariance& unresolved, 
   exr.matrices["worldToNDC"] = world_to_ndc_matrix(camera);
   exr.attributes["oceanref.scene_sha256"] = sha256_hex(scene.canonical);
   exr.attributes["oceanref.seed"] = std::to_string(scene.seed);
+  exr.attributes["oceanref.renderer"] = std::string(choice_name(kRenderers, scene.image.renderer));
   exr.attributes["oceanref.units"] = "radiance in cd/m^2 per channel of linear sRGB (D65)";
   exr.attributes["oceanref.pixel_sha256"] = pixel_hash;
   exr.attributes["oceanref.radiance_f64_sha256"] = radiance_hash;
@@ -313,7 +315,10 @@ std::unique_ptr<PreparedRender> prepare_render(const Scene& scene, int threads,
   if (samples_per_axis > 0) p->scene.image.samples_per_axis = samples_per_axis;
   note(log, "realizing the wave spectrum");
   p->ocean = realize_ocean(p->scene.waves, threads);
+  if (!p->scene.objects.empty()) note(log, "reading the objects");
+  p->objects = load_scene_objects(p->scene);
   p->job = scene_render_job(p->scene, p->ocean, threads);
+  p->job.objects = &p->objects;
   p->unresolved = unresolved_slope_variance(p->job, p->scene.waves);
   return p;
 }
@@ -421,7 +426,11 @@ RenderedImage render_rows(PreparedRender& p, const RenderOutputOptions& options)
   // The error layer of a fast render is its difference from the reference (computed as well).
   p.job.estimate_fast_error = options.fast_lighting_error;
   p.job.layers = options.aov;
-  p.job.renderer = options.renderer;
+  if (options.renderer) p.job.renderer = *options.renderer;
+  if (options.tiles > 1 && p.job.renderer != Renderer::raster) {
+    throw SceneError("render.renderer",
+                     "a tile (render --tile) is rasterized: raytrace renders the whole image");
+  }
   p.job.first_row = first;
   p.job.last_row = last;
   return render(p.job, p.unresolved);
@@ -489,7 +498,7 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
   const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
   p->job.estimate_fast_error = options.fast_lighting_error;
   p->job.layers = options.aov;
-  p->job.renderer = options.renderer;
+  if (options.renderer) p->job.renderer = p->scene.image.renderer = *options.renderer;
   p->job.keep_samples = options.keep_samples;
   const int height = p->scene.image.height;
   const int band = stream_band_rows(p->scene, options);

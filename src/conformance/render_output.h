@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@ std::string radiance_f64_sha256(const std::vector<Vec3>& radiance);
 struct PreparedRender {
   Scene scene;
   Ocean ocean;
+  SceneObjects objects;  // the job's (load_scene_objects)
   RenderJob job;
   SlopeVariance unresolved;
 };
@@ -60,8 +62,9 @@ struct RenderOutputOptions {
   int band_rows = 0;  // streamed: rows per band; 0: stream_band_rows' choice (tests set it)
   // render_scene_to_files: also write every sample's radiance (`render --samples`).
   bool keep_samples = false;
-  // What decides visibility (`render --renderer`): the rasterizer or the ray tracer.
-  Renderer renderer = Renderer::raster;
+  // What decides visibility (`render --renderer`): the rasterizer or the ray tracer; unset: the
+  // scene's render.renderer.
+  std::optional<Renderer> renderer;
 };
 
 // The pixel rows a streamed render holds at once: options.band_rows if set, else as many as fit

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "conformance/float32_backend.h"
+#include "conformance/scene_objects.h"
 #include "core/format.h"
 #include "core/math.h"
 #include "core/parallel.h"
@@ -289,7 +290,9 @@ void bench_render_impl(std::ostream& out, const std::string& path, int threads, 
   scene.image.samples_per_axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
   const auto t0 = std::chrono::steady_clock::now();
   const Ocean ocean = realize_ocean(scene.waves, threads);
+  const SceneObjects objects = load_scene_objects(scene);
   RenderJob job = scene_render_job(scene, ocean, threads);
+  job.objects = &objects;
   const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
   const double prepare =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -416,7 +419,9 @@ void bench_study_impl(std::ostream& out, const std::string& path, int threads) {
     scene.image.height = height;
     scene.image.samples_per_axis = axis;
     const Ocean ocean = realize_ocean(scene.waves, threads);
+    const SceneObjects objects = load_scene_objects(scene);
     RenderJob job = scene_render_job(scene, ocean, threads);
+    job.objects = &objects;
     const SlopeVariance u = unresolved_slope_variance(job, scene.waves);
     RenderedImage image;
     *seconds = seconds_of([&] { image = render(job, u); });

@@ -17,6 +17,8 @@
 #include "core/memory.h"
 #include "core/parallel.h"
 #include "raster/footprint.h"
+#include "shading/ocean_brdf.h"
+#include "shading/ocean_lighting.h"
 #include "spectrum/moments.h"
 #include "waves/fft.h"
 
@@ -44,6 +46,96 @@ TraceGrid trace_view(const Geometry& g) {
   return {g.grid.columns, g.grid.rows, &g.world, &g.triangles, &g.untraced};
 }
 
+// The footprint filter of the job's frame, or none (render.footprint_filtering off).
+std::optional<FootprintFilter> frame_filter(const RenderJob& job) {
+  if (!job.footprint_filtering) return std::nullopt;
+  return make_footprint_filter(*job.ocean, job.time, job.shading.interpolation, job.shading.normals,
+                               job.threads);
+}
+
+// The objects' view for the tracer: the frame's vertices, their triangles.
+TraceGrid object_view(const Geometry& g) {
+  return {0, 0, &g.world, &g.object_triangles, &g.object_untraced};
+}
+
+// Appends the job's objects to the frame's vertices and triangles (FrameGeometry).
+void add_objects(const RenderJob& job, Geometry& g) {
+  g.sea_triangles = g.triangles.size();
+  if (job.objects == nullptr || job.objects->triangles.empty()) return;
+  const auto offset = static_cast<std::uint32_t>(g.world.size());
+  for (const glm::dvec3& p : job.objects->positions) {
+    g.world.push_back(p);
+    const glm::dvec3 s = project(job.camera, p);
+    g.screen.push_back({s.x, s.y, s.z});
+  }
+  for (const auto& t : job.objects->triangles) {
+    g.object_triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    g.triangles.push_back(g.object_triangles.back());
+  }
+}
+
+// The vertices read the waves filtered to their grid cell when filtering.
+Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double bound,
+                        const std::optional<FootprintFilter>& filter) {
+  Geometry g;
+  ProjectedGridSettings settings = job.grid;
+  settings.displacement_bound = bound;
+  g.grid = project_grid(job.camera, settings);
+  if (g.grid.visible) {
+    const std::size_t count = g.grid.base.size();
+    g.world = allocate_buffer<glm::dvec3>(count, "the displaced projected-grid vertices");
+    g.screen = allocate_buffer<ScreenVertex>(count, "the projected-grid vertices on screen");
+    parallel_for(g.grid.rows, job.threads, [&](int j) {
+      for (int i = 0; i < g.grid.columns; ++i) {
+        const std::size_t k =
+            static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
+            static_cast<std::size_t>(i);
+        const glm::dvec2 x0 = g.grid.base[k];
+        const DisplacedPoint p =
+            filter ? filtered_displaced_point(*job.ocean, fields.grids, fields.evolved, *filter,
+                                              x0.x, x0.y, grid_vertex_footprint(g.grid, i, j),
+                                              job.shading.interpolation, job.shading.normals)
+                   : displaced_point(*job.ocean, fields.grids, fields.evolved, x0.x, x0.y,
+                                     job.shading.interpolation, job.shading.normals);
+        g.world[k] = {p.x, p.height, p.z};
+        const glm::dvec3 s = project(job.camera, g.world[k]);
+        g.screen[k] = {s.x, s.y, s.z};
+      }
+    });
+    g.triangles = grid_triangles(g.grid);
+  }
+  add_objects(job, g);
+  if (job.renderer == Renderer::raytrace) {
+    // The rasterizer skips a triangle with a vertex at or behind the near plane (or not finite).
+    const auto behind = [&](const std::array<std::uint32_t, 3>& t) {
+      for (const std::uint32_t v : t) {
+        if (!(g.screen[v].z > job.grid.near)) return true;
+      }
+      return false;
+    };
+    g.untraced.resize(g.sea_triangles);
+    for (std::size_t t = 0; t < g.sea_triangles; ++t) g.untraced[t] = behind(g.triangles[t]);
+    g.object_untraced.resize(g.object_triangles.size());
+    for (std::size_t t = 0; t < g.object_triangles.size(); ++t) {
+      g.object_untraced[t] = behind(g.object_triangles[t]);
+    }
+    if (g.grid.visible) g.bounds = build_bounds_tree(trace_view(g));
+    g.object_bounds = build_triangle_tree(object_view(g));
+  }
+  return g;
+}
+
+// The nearest hit of a ray from the camera: the sea's or an object's (objects numbered from
+// sea_triangles on); equal distances to the sea, as the rasterizer's depth ties.
+RayHit trace_scene(const Geometry& g, const glm::dvec3& origin, const glm::dvec3& direction) {
+  RayHit sea = trace_ray(trace_view(g), g.bounds, origin, direction);
+  if (g.object_triangles.empty()) return sea;
+  RayHit object = trace_ray(object_view(g), g.object_bounds, origin, direction);
+  if (object.triangle < 0 || (sea.triangle >= 0 && !(object.t < sea.t))) return sea;
+  object.triangle += static_cast<std::int64_t>(g.sea_triangles);
+  return object;
+}
+
 // The fragments of sample rows [first_row, last_row), columns `window`, of `grid` by ray tracing
 // (Renderer::raytrace) into `out`, which holds rows from fragment_row on (as rasterize): each
 // sample's ray against the displaced grid, its nearest hit with the world-space weights (the
@@ -51,15 +143,14 @@ TraceGrid trace_view(const Geometry& g) {
 void trace_fragments(const RenderJob& job, const Geometry& g, const SampleGrid& grid, int first_row,
                      int last_row, std::vector<Fragment>& out, int fragment_row,
                      FragmentColumns window, int threads) {
-  if (!g.grid.visible) return;
+  if (g.triangles.empty()) return;
   const int count = window.count < 0 ? grid.columns() - window.first : window.count;
-  const TraceGrid view = trace_view(g);
   parallel_for(last_row - first_row, threads, [&](int r) {
     const int row = first_row + r;
     for (int a = 0; a < count; ++a) {
       const int column = window.first + a;
       const glm::dvec3 d = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-      const RayHit hit = trace_ray(view, g.bounds, job.camera.position, d);
+      const RayHit hit = trace_scene(g, job.camera.position, d);
       if (hit.triangle < 0) continue;
       Fragment& f =
           out[static_cast<std::size_t>(row - fragment_row) * static_cast<std::size_t>(count) +
@@ -71,52 +162,26 @@ void trace_fragments(const RenderJob& job, const Geometry& g, const SampleGrid& 
   });
 }
 
-// The footprint filter of the job's frame, or none (render.footprint_filtering off).
-std::optional<FootprintFilter> frame_filter(const RenderJob& job) {
-  if (!job.footprint_filtering) return std::nullopt;
-  return make_footprint_filter(*job.ocean, job.time, job.shading.interpolation, job.shading.normals,
-                               job.threads);
+// The unit normal of an object triangle, facing against `ray` (two-sided).
+Vec3 object_normal(const Geometry& g, std::size_t triangle, const glm::dvec3& ray) {
+  const auto& t = g.triangles[triangle];
+  glm::dvec3 n = glm::cross(g.world[t[1]] - g.world[t[0]], g.world[t[2]] - g.world[t[0]]);
+  if (glm::dot(n, ray) > 0.0) n = -n;
+  return normalize(to_vec3(n));
 }
 
-// The vertices read the waves filtered to their grid cell when filtering.
-Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double bound,
-                        const std::optional<FootprintFilter>& filter) {
-  Geometry g;
-  ProjectedGridSettings settings = job.grid;
-  settings.displacement_bound = bound;
-  g.grid = project_grid(job.camera, settings);
-  if (!g.grid.visible) return g;
-  const std::size_t count = g.grid.base.size();
-  g.world = allocate_buffer<glm::dvec3>(count, "the displaced projected-grid vertices");
-  g.screen = allocate_buffer<ScreenVertex>(count, "the projected-grid vertices on screen");
-  parallel_for(g.grid.rows, job.threads, [&](int j) {
-    for (int i = 0; i < g.grid.columns; ++i) {
-      const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
-                            static_cast<std::size_t>(i);
-      const glm::dvec2 x0 = g.grid.base[k];
-      const DisplacedPoint p =
-          filter ? filtered_displaced_point(*job.ocean, fields.grids, fields.evolved, *filter, x0.x,
-                                            x0.y, grid_vertex_footprint(g.grid, i, j),
-                                            job.shading.interpolation, job.shading.normals)
-                 : displaced_point(*job.ocean, fields.grids, fields.evolved, x0.x, x0.y,
-                                   job.shading.interpolation, job.shading.normals);
-      g.world[k] = {p.x, p.height, p.z};
-      const glm::dvec3 s = project(job.camera, g.world[k]);
-      g.screen[k] = {s.x, s.y, s.z};
-    }
-  });
-  g.triangles = grid_triangles(g.grid);
-  if (job.renderer == Renderer::raytrace) {
-    // The rasterizer skips a triangle with a vertex at or behind the near plane (or not finite).
-    g.untraced.resize(g.triangles.size());
-    for (std::size_t t = 0; t < g.triangles.size(); ++t) {
-      for (const std::uint32_t v : g.triangles[t]) {
-        if (!(g.screen[v].z > job.grid.near)) g.untraced[t] = true;
-      }
-    }
-    g.bounds = build_bounds_tree(trace_view(g));
-  }
-  return g;
+// The radiance an object triangle sends back along `ray`.
+Vec3 object_radiance(const RenderFrame& frame, std::size_t triangle, const glm::dvec3& ray,
+                     Vec3* normal = nullptr) {
+  const Geometry& g = frame.geometry;
+  const Vec3 n = object_normal(g, triangle, ray);
+  if (normal != nullptr) *normal = n;
+  const SceneObjects& objects = *frame.job.objects;
+  const ObjectMaterial& m = objects.materials[objects.material[triangle - g.sea_triangles]];
+  const FrameLighting& light = frame.light;
+  return diffuse_object_radiance(m.albedo, n, light.sun_direction,
+                                 scaled(light.sun_radiance, light.sun_solid_angle),
+                                 light.sky_irradiance);
 }
 
 // One sample of a grid with `samples_per_axis` samples per pixel axis.
@@ -136,10 +201,16 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
     }
     return p;
   }
-  p.hit = true;
   p.depth = f.depth;
   p.triangle = f.triangle;
   const auto& t = g.triangles[static_cast<std::size_t>(f.triangle)];
+  if (static_cast<std::size_t>(f.triangle) >= g.sea_triangles) {
+    p.object = true;
+    for (std::size_t v = 0; v < 3; ++v) p.position += f.weights[v] * g.world[t[v]];
+    p.radiance = object_radiance(frame, static_cast<std::size_t>(f.triangle), ray, &p.normal);
+    return p;
+  }
+  p.hit = true;
   for (std::size_t v = 0; v < 3; ++v) {
     p.x0 += f.weights[v] * g.grid.base[t[v]];
     p.position += f.weights[v] * g.world[t[v]];
@@ -180,6 +251,21 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
   const SurfaceFrame surface = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   p.lighting =
       lighting_terms(sh, job.sky, light, p.view, surface, p.roughness, job.estimate_fast_error);
+  if (job.renderer == Renderer::raytrace && job.object_reflections && !g.object_triangles.empty()) {
+    // The mirror ray about the shading normal: an object there replaces the reflected sky.
+    const double vn_shading = dot(p.view, p.normal);
+    const Vec3 mirror = combine(2.0 * vn_shading, p.normal, -1.0, p.view);
+    const glm::dvec3 r(mirror[0], mirror[1], mirror[2]);
+    const RayHit hit = trace_ray(object_view(g), g.object_bounds, p.position, r);
+    if (hit.triangle >= 0) {
+      p.reflects_object = true;
+      const Vec3 seen =
+          object_radiance(frame, g.sea_triangles + static_cast<std::size_t>(hit.triangle), r);
+      const double fresnel = fresnel_reflectance(vn_shading, sh.brdf.fresnel);
+      p.lighting.sky = scaled(seen, fresnel);
+      p.lighting.sky_error = Vec3{};
+    }
+  }
   const LightingTerms& l = p.lighting;
   for (std::size_t c = 0; c < 3; ++c) {
     p.radiance[c] = l.sun[c] + l.sky[c] + l.sea[c];
@@ -207,7 +293,7 @@ std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const
   std::vector<Fragment> fragments = allocate_buffer<Fragment>(
       static_cast<std::size_t>(grid.columns()) * static_cast<std::size_t>(rows),
       "the sample fragments (one per sample of the image)");
-  if (!g.grid.visible || rows == 0) return fragments;
+  if (g.triangles.empty() || rows == 0) return fragments;
   if (job.renderer == Renderer::raytrace) {
     trace_fragments(job, g, grid, first_row, last_row, fragments, first_row, {}, job.threads);
     return fragments;
@@ -644,7 +730,9 @@ Vec3 resolve_pixel(const std::vector<SampleProbe>& samples) {
 SurfaceMesh surface_mesh(const RenderJob& job) {
   const ReferenceFpEnvironment fp;
   const FrameFields fields = frame_fields(job);
-  Geometry g = build_geometry(job, fields, height_bound(*job.ocean), frame_filter(job));
+  RenderJob sea_only = job;
+  sea_only.objects = nullptr;
+  Geometry g = build_geometry(sea_only, fields, height_bound(*job.ocean), frame_filter(job));
   return {std::move(g.grid), std::move(g.world), std::move(g.triangles)};
 }
 

@@ -19,6 +19,7 @@
 #include "shading/lighting_terms.h"
 #include "spectrum/moments.h"
 #include "trace/height_field_tracer.h"
+#include "trace/scene_objects.h"
 #include "waves/footprint_filter.h"
 #include "waves/ocean.h"
 #include "waves/slope_budget.h"
@@ -48,6 +49,14 @@ inline constexpr std::array<Choice<Renderer>, 2> kRenderers{{
 struct RenderJob {
   const Ocean* ocean = nullptr;
   Renderer renderer = Renderer::raster;
+  // The scene's objects in world space (none when null or empty): both renderers show them,
+  // depth-tested against the sea (the part under the surface hidden by it); the ray tracer also
+  // reflects them in the sea when object_reflections is set — each sea sample's mirror ray about
+  // its shading normal, where it meets an object, reflects that object's radiance times the
+  // Fresnel reflectance F(V·N) instead of the sky (a sharp reflection: the BRDF's slope lobe
+  // is not integrated over the object). No shadows, in either renderer.
+  const SceneObjects* objects = nullptr;
+  bool object_reflections = true;
   double time = 0.0;
   Camera camera;
   ProjectedGridSettings grid;  // columns, rows, margin (the bound is filled in)
@@ -189,6 +198,14 @@ struct FrameGeometry {
   // near plane) and the bounds quadtree over the grid's cells (trace/height_field_tracer.h).
   std::vector<bool> untraced;
   BoundsTree bounds;
+  // The objects (RenderJob::objects): their vertices follow the grid's in `world` and `screen`,
+  // their triangles the sea's in `triangles` (so the rasterizer's depth test and tie order — the
+  // sea first — decide between them), from index sea_triangles on. For the ray tracer, the same
+  // triangles again (object_triangles, object_untraced) with their own bounds tree.
+  std::size_t sea_triangles = 0;
+  std::vector<std::array<std::uint32_t, 3>> object_triangles;
+  std::vector<bool> object_untraced;
+  BoundsTree object_bounds;
 };
 // What every band of a frame shares, computed once: a render in bands (streaming, bounded
 // memory) prepares the frame, then renders its rows band by band.
@@ -223,7 +240,9 @@ SurfaceMesh surface_mesh(const RenderJob& job);
 // Everything behind one sample, for `oceanref probe`.
 struct SampleProbe {
   double image_x = 0.0, image_y = 0.0;  // the sample position [pixels]
-  bool hit = false;
+  bool hit = false;                     // the sea
+  bool object = false;  // an object (then only depth, triangle, position, normal and radiance)
+  bool reflects_object = false;  // the sea sample's sky term is an object's reflection
   double depth = 0.0;
   std::int64_t triangle = -1;
   glm::dvec2 x0{0.0};

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -95,6 +96,7 @@ const std::vector<std::string>& scene_key_paths() {
       "render.pixel_tolerance",
       "render.max_samples_per_pixel",
       "render.footprint_filtering",
+      "render.renderer",
       "render.tone_key",
       "render.tone_white",
   };
@@ -230,6 +232,11 @@ std::string join(const std::string& path, const std::string& key) {
 // under it, in the order of scene_key_paths(); the top level also holds `objects` (rejected as
 // not supported yet).
 std::vector<std::string> section_keys(const std::string& path) {
+  // An element of the objects array, and its material.
+  if (path.rfind("objects[", 0) == 0) {
+    if (path.ends_with(".material")) return {"albedo"};
+    return {"obj", "position", "rotation_deg", "scale", "material"};
+  }
   std::vector<std::string> keys;
   const std::string prefix = path.empty() ? "" : path + ".";
   for (const std::string& k : scene_key_paths()) {
@@ -477,6 +484,42 @@ glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, doubl
   return out;
 }
 
+// The objects array: each element an OBJ file and its placement and material.
+std::vector<ObjectSettings> parse_objects(const Section& top) {
+  std::vector<ObjectSettings> objects;
+  if (!top.has("objects")) return objects;
+  const json& list = top.at("objects");
+  if (!list.is_array() || list.size() > kMaxSceneObjects) {
+    throw SceneError("objects", "expected an array of at most " + std::to_string(kMaxSceneObjects) +
+                                    " objects, got " + describe(list));
+  }
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Section o(list[i], "objects[" + std::to_string(i) + "]");
+    ObjectSettings object;
+    if (!o.has("obj")) throw SceneError(o.path + ".obj", "missing: the object's OBJ file");
+    object.obj = o.text("obj", "");
+    if (object.obj.empty() || object.obj.find('\0') != std::string::npos) {
+      throw SceneError(o.where("obj"), "expected the path of an OBJ file, got \"\"");
+    }
+    object.position = vector3(o, "position", object.position, 1e6);
+    object.rotation_deg = vector3(o, "rotation_deg", object.rotation_deg, 360.0);
+    object.scale = o.number("scale", object.scale, 1e-6, 1e4);
+    if (o.has("material")) {
+      const Section m(o.at("material"), o.where("material"));
+      const glm::dvec3 a = vector3(m, "albedo", {0.5, 0.5, 0.5}, 1.0);
+      for (glm::length_t c = 0; c < 3; ++c) {
+        if (a[c] < 0.0) {
+          throw SceneError(m.where("albedo") + "[" + std::to_string(c) + "]",
+                           "must be in [0, 1], got " + shortest_number(a[c]));
+        }
+        object.material.albedo[static_cast<std::size_t>(c)] = a[c];
+      }
+    }
+    objects.push_back(std::move(object));
+  }
+  return objects;
+}
+
 // render.pixel_tolerance and its cap render.max_samples_per_pixel, (S·3^r)² for r refinements
 // of the S×S grid (renderer.h).
 void parse_adaptive_sampling(const Section& render, ImageSettings& im) {
@@ -587,6 +630,7 @@ void parse_rendering(const Section& top, Scene& scene) {
   im.samples_per_axis = axis;
   parse_adaptive_sampling(render, im);
   im.footprint_filtering = render.boolean("footprint_filtering", false);
+  im.renderer = choice(render, "renderer", kRenderers, "raster");
   im.tone_key = render.number("tone_key", im.tone_key, 1e-3, 1.0);
   im.tone_white = render.number("tone_white", im.tone_white, 0.0, 1e30);
   try {
@@ -790,13 +834,8 @@ json parse_scene_json(std::string_view text, const std::string& source) {
 Scene parse_scene(const json& document) {
   const ReferenceFpEnvironment fp;
   const Section top(document, "");
-  if (top.has("objects")) {
-    throw SceneError("objects",
-                     "this section is not supported yet by this version of oceanref "
-                     "(supported: seed, time, waves, camera, grid, atmosphere, "
-                     "shading, render)");
-  }
   Scene scene;
+  scene.objects = parse_objects(top);
   if (top.has("seed")) {
     const json& s = top.at("seed");
     if (!s.is_number_unsigned()) {
@@ -883,6 +922,7 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) 
   job.pixel_tolerance = scene.image.pixel_tolerance;
   job.max_refinements = scene.image.max_refinements;
   job.footprint_filtering = scene.image.footprint_filtering;
+  job.renderer = scene.image.renderer;
   job.threads = threads;
   return job;
 }
@@ -900,6 +940,7 @@ Scene load_scene(const std::string& path, std::ostream* warnings) {
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path, "cannot read the scene file");
   Scene scene = parse_scene(parse_scene_json(text.str(), path));
+  scene.directory = std::filesystem::path(path).parent_path().string();
   if (warnings != nullptr) {
     for (const UnusedKey& u : scene.unused) {
       *warnings << "oceanref: warning: " << path << ": " << u.path

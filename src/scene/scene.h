@@ -51,9 +51,10 @@ struct ImageSettings {
   // Adaptive sampling (RenderJob::pixel_tolerance, max_refinements); 0: the fixed S×S grid.
   double pixel_tolerance = 0.0;
   int max_refinements = 0;
-  bool footprint_filtering = false;  // RenderJob::footprint_filtering
-  double tone_key = 0.18;            // Reinhard key a for the PNG preview
-  double tone_white = 0.0;           // L_white for the preview; 0: the largest scaled luminance
+  bool footprint_filtering = false;      // RenderJob::footprint_filtering
+  Renderer renderer = Renderer::raster;  // RenderJob::renderer (`render --renderer` overrides)
+  double tone_key = 0.18;                // Reinhard key a for the PNG preview
+  double tone_white = 0.0;               // L_white for the preview; 0: the largest scaled luminance
 };
 
 // A key present in a scene file that does nothing for this scene (pbrt-v4's ReportUnused): e.g.
@@ -63,6 +64,18 @@ struct UnusedKey {
   std::string path;    // JSON path, e.g. "waves.spectrum.fetch"
   std::string reason;  // why it has no effect, e.g. "the phillips spectrum has no fetch"
 };
+
+// An object of the scene (`objects`): an OBJ mesh (its path as written in the scene; relative
+// paths are relative to the scene file's folder, see Scene::directory), scaled, rotated about
+// the x, then y, then z axis (right-handed, degrees) and moved to `position`.
+struct ObjectSettings {
+  std::string obj;
+  glm::dvec3 position{0.0};
+  glm::dvec3 rotation_deg{0.0};
+  double scale = 1.0;
+  ObjectMaterial material;
+};
+inline constexpr std::size_t kMaxSceneObjects = 64;
 
 struct Scene {
   std::uint64_t seed = 1;
@@ -74,13 +87,17 @@ struct Scene {
   AtmosphereSettings atmosphere;
   ShadingSettings shading;
   ImageSettings image;
+  std::vector<ObjectSettings> objects;
+  // The folder relative object paths start from: the scene file's (load_scene), else empty (the
+  // working directory).
+  std::string directory;
   std::string canonical;          // the parsed document, dumped canonically (sorted keys): hashed
   std::vector<UnusedKey> unused;  // present keys without effect here, in scene_key_paths order
 };
 
 // The JSON path of every setting a scene file accepts (leaves, e.g. "waves.spectrum.fetch"), in
 // document order: the parser's accepted keys of each object are derived from this list (the top
-// level also holds `objects`, rejected as not supported yet).
+// level also holds `objects`, an array whose elements have their own keys: ObjectSettings).
 const std::vector<std::string>& scene_key_paths();
 
 // The camera and sky of a scene (the validated settings resolved).

@@ -117,6 +117,18 @@ Vec3 foam_radiance(double albedo, const Vec3& e_sun, const Vec3& e_sky) {
   return l;
 }
 
+Vec3 diffuse_object_radiance(const Vec3& albedo, const Vec3& normal, const Vec3& sun_direction,
+                             const Vec3& sun_normal_irradiance, const Vec3& sky_irradiance) {
+  const double cos_sun = std::fmax(0.0, dot(normal, sun_direction));
+  const double sky_view = 0.5 * (1.0 + normal[1]);
+  Vec3 l{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    l[k] = albedo[k] * (sun_normal_irradiance[k] * cos_sun + sky_irradiance[k] * sky_view) /
+           std::numbers::pi;
+  }
+  return l;
+}
+
 Vec3 mix_whitecaps(const Vec3& ocean, const Vec3& foam, double coverage) {
   Vec3 l{};
   for (std::size_t k = 0; k < 3; ++k) l[k] = (1.0 - coverage) * ocean[k] + coverage * foam[k];

@@ -40,6 +40,13 @@ double whitecap_coverage(double jacobian_mean, double jacobian_variance, double 
 // Foam radiance: a Lambertian white of albedo a lit by the sun and the sky,
 // a·(E_sun + E_sky)/π, mixed as (1 − W)·L_ocean + W·L_foam.
 Vec3 foam_radiance(double albedo, const Vec3& sun_irradiance, const Vec3& sky_irradiance);
+// An object's Lambertian surface of reflectance ρ (per channel) with unit normal n facing the
+// viewer, unshadowed: ρ/π·(E_sun max(0, n·s) + E_sky (1 + n_y)/2) — the sun's irradiance at
+// normal incidence E_sun = L_sun Ω_sun, and the sky as a uniform upper hemisphere of the given
+// horizontal irradiance E_sky (view factor (1 + n_y)/2). A model chosen for objects, not from
+// the seeds: both renderers use it, so they agree on objects.
+Vec3 diffuse_object_radiance(const Vec3& albedo, const Vec3& normal, const Vec3& sun_direction,
+                             const Vec3& sun_normal_irradiance, const Vec3& sky_irradiance);
 Vec3 mix_whitecaps(const Vec3& ocean, const Vec3& foam, double coverage);
 
 }  // namespace oceanref

@@ -83,7 +83,8 @@ int build(const TraceGrid& grid, BoundsTree& tree, int i0, int i1, int j0, int j
   node.lower -= pad;
   node.upper += pad;
   if (i1 - i0 == 1 && j1 - j0 == 1) {
-    node.cell = j0 * (grid.columns - 1) + i0;
+    node.first = 2 * (j0 * (grid.columns - 1) + i0);
+    node.count = 2;
   } else if (i1 - i0 >= j1 - j0) {
     const int middle = (i0 + i1) / 2;
     node.children = {build(grid, tree, i0, middle, j0, j1), build(grid, tree, middle, i1, j0, j1)};
@@ -94,7 +95,74 @@ int build(const TraceGrid& grid, BoundsTree& tree, int i0, int i1, int j0, int j
   tree.nodes[static_cast<std::size_t>(index)] = node;
   return index;
 }
+
+// The box of triangles order[from, to), padded as above.
+void bound_triangles(const TraceGrid& mesh, const std::vector<std::uint32_t>& order,
+                     std::size_t from, std::size_t to, BoundsTree::Node& node) {
+  node.lower = glm::dvec3(std::numeric_limits<double>::infinity());
+  node.upper = -node.lower;
+  for (std::size_t i = from; i < to; ++i) {
+    for (const std::uint32_t v : (*mesh.triangles)[order[i]]) {
+      node.lower = glm::min(node.lower, (*mesh.vertices)[v]);
+      node.upper = glm::max(node.upper, (*mesh.vertices)[v]);
+    }
+  }
+  const glm::dvec3 pad(1e-9 * (1.0 + std::max({glm::length(node.lower), glm::length(node.upper)})));
+  node.lower -= pad;
+  node.upper += pad;
+}
+
+glm::dvec3 centroid(const TraceGrid& mesh, std::uint32_t t) {
+  const auto& tri = (*mesh.triangles)[t];
+  const std::vector<glm::dvec3>& v = *mesh.vertices;
+  return (v[tri[0]] + v[tri[1]] + v[tri[2]]) / 3.0;
+}
+
+int build_triangles(const TraceGrid& mesh, BoundsTree& tree, std::vector<std::uint32_t>& order,
+                    std::size_t from, std::size_t to) {
+  const int index = static_cast<int>(tree.nodes.size());
+  tree.nodes.emplace_back();
+  BoundsTree::Node node;
+  bound_triangles(mesh, order, from, to, node);
+  if (to - from == 1) {
+    node.first = static_cast<int>(order[from]);
+    node.count = 1;
+  } else {
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (std::size_t i = from; i < to; ++i) {
+      lo = glm::min(lo, centroid(mesh, order[i]));
+      hi = glm::max(hi, centroid(mesh, order[i]));
+    }
+    const glm::dvec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
+    // Sorted by centroid, ties by index: the same tree on every platform.
+    std::sort(order.begin() + static_cast<std::ptrdiff_t>(from),
+              order.begin() + static_cast<std::ptrdiff_t>(to),
+              [&](std::uint32_t a, std::uint32_t b) {
+                const double ca = centroid(mesh, a)[axis], cb = centroid(mesh, b)[axis];
+                return ca < cb || (ca == cb && a < b);
+              });
+    const std::size_t middle = from + (to - from) / 2;
+    node.children = {build_triangles(mesh, tree, order, from, middle),
+                     build_triangles(mesh, tree, order, middle, to)};
+  }
+  tree.nodes[static_cast<std::size_t>(index)] = node;
+  return index;
+}
 }  // namespace
+
+BoundsTree build_triangle_tree(const TraceGrid& mesh) {
+  BoundsTree tree;
+  const std::size_t count = mesh.triangles->size();
+  if (count == 0) return tree;
+  std::vector<std::uint32_t> order(count);
+  for (std::size_t i = 0; i < count; ++i) order[i] = static_cast<std::uint32_t>(i);
+  tree.nodes.reserve(2 * count);
+  build_triangles(mesh, tree, order, 0, count);
+  return tree;
+}
 
 BoundsTree build_bounds_tree(const TraceGrid& grid) {
   BoundsTree tree;
@@ -125,9 +193,9 @@ RayHit trace_ray(const TraceGrid& grid, const BoundsTree& tree, const glm::dvec3
     if (best.triangle >= 0 && near > best.t) continue;
     const BoundsTree::Node& n = tree.nodes[static_cast<std::size_t>(index)];
     if (n.children[0] < 0) {
-      const auto first = 2 * static_cast<std::size_t>(n.cell);
-      test_triangle(grid, first, origin, direction, best);
-      test_triangle(grid, first + 1, origin, direction, best);
+      for (int t = n.first; t < n.first + n.count; ++t) {
+        test_triangle(grid, static_cast<std::size_t>(t), origin, direction, best);
+      }
       continue;
     }
     const auto [a, b] = n.children;

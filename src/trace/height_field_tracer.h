@@ -35,17 +35,23 @@ struct TraceGrid {
   const std::vector<bool>* skipped = nullptr;                            // per triangle
 };
 
-// The quadtree of bounds over the grid's cells.
+// A tree of bounding boxes: over the grid's cells (the quadtree), or over the triangles of any
+// mesh (objects).
 struct BoundsTree {
   struct Node {
     glm::dvec3 lower{0.0}, upper{0.0};    // bounding box of the block's vertices
     std::array<int, 2> children{-1, -1};  // −1: a leaf
-    int cell = -1;                        // a leaf's cell j·(columns − 1) + i
+    // A leaf's triangles [first, first + count): a grid cell's two (2c, 2c + 1 for the cell
+    // c = j·(columns − 1) + i), or one triangle of a mesh.
+    int first = -1, count = 0;
   };
   std::vector<Node> nodes;  // nodes[0] is the root
 };
 
 BoundsTree build_bounds_tree(const TraceGrid& grid);
+// The bounds of any triangles (`grid.columns`, `rows` unused): split at the median centroid along
+// the longest axis of the centroids' box, down to one triangle per leaf.
+BoundsTree build_triangle_tree(const TraceGrid& mesh);
 
 // The nearest intersection with t > 0 of the ray origin + t·direction: the smallest t wins, and
 // between equal t the smaller triangle index (the rasterizer's order for equal depths).

@@ -20,6 +20,7 @@
 #include "conformance/compare.h"
 #include "conformance/render_piece.h"
 #include "io/exr.h"
+#include "io/obj_mesh.h"
 #include "scene/scene.h"
 
 namespace oceanref::fuzz {
@@ -142,11 +143,18 @@ void piece_entry(const std::uint8_t* data, std::size_t size) {
   guarded("piece", [&] { (void)read_render_piece(file.path); });
 }
 
+void obj_entry(const std::uint8_t* data, std::size_t size) {
+  const RemoveOnExit file{temporary_path(".obj")};
+  write_file(file.path, data, size);
+  guarded("obj", [&] { (void)load_obj(file.path); });
+}
+
 Entry entry_for(std::string_view target) {
   if (target == "scene") return scene_entry;
   if (target == "cli") return cli_entry;
   if (target == "exr") return exr_entry;
   if (target == "piece") return piece_entry;
+  if (target == "obj") return obj_entry;
   return nullptr;
 }
 

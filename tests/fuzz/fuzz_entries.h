@@ -31,9 +31,15 @@ void exr_entry(const std::uint8_t* data, std::size_t size);
 // temporary file).
 void piece_entry(const std::uint8_t* data, std::size_t size);
 
+// An OBJ mesh (load_obj on the bytes written to a temporary file, at the default limits). An
+// ObjError is the clean outcome for bad input; a PreconditionError — the validator and
+// tinyobjloader reading a file differently — is a finding.
+void obj_entry(const std::uint8_t* data, std::size_t size);
+
 inline constexpr double kMaxFuzzPixelBytes = 16.0 * 1024 * 1024;
 
-// The entry of a target by name ("scene", "cli", "exr", "piece"); nullptr for another name.
+// The entry of a target by name ("scene", "cli", "exr", "piece", "obj"); nullptr for another
+// name.
 using Entry = void (*)(const std::uint8_t*, std::size_t);
 Entry entry_for(std::string_view target);
 

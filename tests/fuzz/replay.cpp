@@ -25,7 +25,9 @@ int main(int argc, char** argv) {
   }
   const oceanref::fuzz::Entry entry = oceanref::fuzz::entry_for(argv[1]);
   if (entry == nullptr) {
-    std::fprintf(stderr, "oceanref_fuzz_replay: unknown target '%s' (scene, cli, exr)\n", argv[1]);
+    std::fprintf(stderr,
+                 "oceanref_fuzz_replay: unknown target '%s' (scene, cli, exr, piece, obj)\n",
+                 argv[1]);
     return 2;
   }
   const oceanref::ReferenceFpEnvironment fp;
