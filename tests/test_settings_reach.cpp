@@ -164,6 +164,7 @@ std::vector<Row> reach_rows() {
       changes("render.footprint_filtering", true, kPixels),
       // The ray tracer on the same grid: the same surfaces, other rounding of the weights.
       changes("render.renderer", "raytrace", kPixels),
+      changes("render.mastin_antialiasing", 0.02, kPixels),
       {"render.tone_key", 0.3, json::object(), Effect::preview},
       {"render.tone_white", 2.0, json::object(), Effect::preview},
   };

@@ -133,6 +133,10 @@ py::dict render_scene(const PyScene& s, int threads_arg, std::optional<int> spp,
                         "the fixed grid's samples only: not with render.pixel_tolerance "
                         "(adaptive sampling)");
   }
+  if (samples && scene.image.mastin_antialiasing > 0.0) {
+    throw ArgumentError("samples",
+                        "the fixed grid's samples only: not with render.mastin_antialiasing");
+  }
   if (!renderer.empty()) {
     scene.image.renderer = parse_choice<ArgumentError>(kRenderers, "renderer", renderer);
   }

@@ -86,6 +86,9 @@ void print_report(std::ostream& out, const RenderReport& r, const Scene& scene,
     out << "pixel_samples_max," << format_number(pe.max_samples) << '\n';
     out << "capped_pixels," << pe.capped_pixels << '\n';
   }
+  if (scene.image.mastin_antialiasing > 0.0) {
+    out << "antialiased_pixels," << pe.antialiased_pixels << '\n';
+  }
   out << "unconverged_samples," << r.unconverged_samples << '\n';
   out << "integrand_evaluations," << r.integrand_evaluations << '\n';
   out << "memory_estimate_bytes," << format_number(render_memory_estimate(scene, options).total())

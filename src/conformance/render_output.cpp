@@ -122,6 +122,7 @@ struct PixelErrorTally {
   double most_samples = 0.0;
   long pixels = 0;
   long capped_pixels = 0;
+  long antialiased_pixels = 0;
   RelativeErrorHistogram histogram;
 
   void add(const RenderedImage& image) {
@@ -133,6 +134,7 @@ struct PixelErrorTally {
     }
     pixels += static_cast<long>(image.radiance.size());
     capped_pixels += image.capped_pixels;
+    antialiased_pixels += image.antialiased_pixels;
     for (std::size_t i = 0; i < image.pixel_error.size(); ++i) {
       for (std::size_t c = 0; c < 3; ++c)
         histogram.add(image.pixel_error[i][c], image.radiance[i][c]);
@@ -141,6 +143,7 @@ struct PixelErrorTally {
   PixelErrorSummary result() const {
     PixelErrorSummary s;
     s.samples_per_pixel = samples_per_pixel;
+    s.antialiased_pixels = antialiased_pixels;
     if (adaptive) {
       s.adaptive = true;
       s.mean_samples = samples / static_cast<double>(std::max(pixels, 1L));
@@ -449,9 +452,16 @@ RenderPiece render_scene_piece(const Scene& scene, const RenderOutputOptions& op
   require_within(render_memory_estimate(scene, options), options.max_memory,
                  "--max-memory (Python: max_memory=)");
   const auto p = prepare_render(scene, options.threads, options.samples_per_axis, options.log);
-  return {sha256_hex(p->scene.canonical), options.tile, options.tiles,
-          p->job.samples_per_axis,        options.aov,  adaptive(p->scene),
-          render_rows(*p, options)};
+  RenderPiece piece;
+  piece.scene_sha256 = sha256_hex(p->scene.canonical);
+  piece.tile = options.tile;
+  piece.tiles = options.tiles;
+  piece.samples_per_axis = p->job.samples_per_axis;
+  piece.layers = options.aov;
+  piece.adaptive = adaptive(p->scene);
+  piece.antialiased = p->scene.image.mastin_antialiasing > 0.0;
+  piece.band = render_rows(*p, options);
+  return piece;
 }
 
 RenderedScene scene_output(const Scene& scene, RenderedImage rendered, bool aov) {
@@ -488,6 +498,11 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
                    "a streamed render of the whole image (options.streamed)");
   OCEANREF_EXPECTS(samples_path.empty() == !options.keep_samples,
                    "a samples file exactly when options.keep_samples");
+  if (options.keep_samples && scene.image.mastin_antialiasing > 0.0) {
+    throw SceneError("render.mastin_antialiasing",
+                     "the samples of the fixed grid are exported (--samples), not Mastin's extra "
+                     "ones: remove render.mastin_antialiasing");
+  }
   if (options.keep_samples && adaptive(scene)) {
     throw SceneError("render.pixel_tolerance",
                      "the samples of the fixed grid are exported (--samples), not those of "

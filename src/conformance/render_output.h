@@ -117,7 +117,8 @@ struct PixelErrorSummary {
   bool adaptive = false;      // adaptive sampling (render.pixel_tolerance): then also
   double mean_samples = 0.0;  // the mean and largest samples per pixel,
   double max_samples = 0.0;
-  long capped_pixels = 0;  // the pixels that reached the cap above the tolerance
+  long capped_pixels = 0;       // the pixels that reached the cap above the tolerance
+  long antialiased_pixels = 0;  // render.mastin_antialiasing: the pixels given 16 more samples
   double p50_relative = 0.0;
   double p99_relative = 0.0;
   double max_relative = 0.0;

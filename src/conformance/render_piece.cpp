@@ -76,7 +76,7 @@ std::pair<int, int> tile_rows(int index, int count, int height) {
 
 void write_render_piece(const std::string& path, const RenderPiece& piece) {
   const RenderedImage& b = piece.band;
-  const nlohmann::json header = {
+  nlohmann::json header = {
       {"scene_sha256", piece.scene_sha256},
       {"tile", piece.tile},
       {"tiles", piece.tiles},
@@ -91,6 +91,8 @@ void write_render_piece(const std::string& path, const RenderPiece& piece) {
       {"integrand_evaluations", b.integrand_evaluations},
       {"unresolved_slope_variance", {b.unresolved.upwind, b.unresolved.crosswind}},
       {"displacement_bound", b.displacement_bound}};
+  // Only with Mastin's anti-aliasing, so that the other pieces of format 3 stay as they were.
+  if (piece.antialiased) header["antialiased_pixels"] = b.antialiased_pixels;
   std::vector<std::uint8_t> bytes;
   const std::string text = kMagic + header.dump() + "\n";
   bytes.insert(bytes.end(), text.begin(), text.end());
@@ -165,6 +167,11 @@ RenderPiece read_render_piece(const std::string& path) {
     b.first_row = static_cast<int>(integer("first_row", 0, kMaxExrSide - 1));
     b.height = static_cast<int>(integer("rows", 1, kMaxExrSide - b.first_row));
     b.capped_pixels = integer("capped_pixels", 0, static_cast<long>(b.width) * b.height);
+    piece.antialiased = h.contains("antialiased_pixels");
+    if (piece.antialiased) {
+      b.antialiased_pixels =
+          integer("antialiased_pixels", 0, static_cast<long>(b.width) * b.height);
+    }
     b.unconverged_samples = integer("unconverged_samples", 0, std::numeric_limits<long>::max());
     b.integrand_evaluations = integer("integrand_evaluations", 0, std::numeric_limits<long>::max());
     const nlohmann::json& u = h.at("unresolved_slope_variance");
@@ -174,7 +181,9 @@ RenderPiece read_render_piece(const std::string& path) {
     b.unresolved = {number(u[0], "unresolved_slope_variance"),
                     number(u[1], "unresolved_slope_variance")};
     b.displacement_bound = number(h.at("displacement_bound"), "displacement_bound");
-    if (h.size() != 14) fail(path, "the header has keys other than those of format 3");
+    if (h.size() != (piece.antialiased ? 15u : 14u)) {
+      fail(path, "the header has keys other than those of format 3");
+    }
   } catch (const nlohmann::json::exception& e) {
     fail(path, std::string("unreadable header: ") + e.what());
   }
@@ -267,6 +276,7 @@ RenderedImage merge_render_pieces(const Scene& scene, const std::vector<RenderPi
     image.unconverged_samples += band.unconverged_samples;
     image.integrand_evaluations += band.integrand_evaluations;
     image.capped_pixels += band.capped_pixels;
+    image.antialiased_pixels += band.antialiased_pixels;
     for_each_buffer(first.layers, first.adaptive, [&](auto member) {
       (image.*member).insert((image.*member).end(), (band.*member).begin(), (band.*member).end());
     });

@@ -29,9 +29,10 @@ struct RenderPiece {
   std::string scene_sha256;  // of the scene's canonical form (Scene::canonical)
   int tile = 0, tiles = 1;   // tile `tile` of `tiles`
   int samples_per_axis = 1;
-  bool layers = false;    // the band holds the --aov layers
-  bool adaptive = false;  // and the sample counts of adaptive sampling (pixel_samples)
-  RenderedImage band;     // width × rows from band.first_row (unresolved, bound, counts included)
+  bool layers = false;       // the band holds the --aov layers
+  bool adaptive = false;     // and the sample counts of adaptive sampling (pixel_samples)
+  bool antialiased = false;  // rendered with render.mastin_antialiasing (its count in the header)
+  RenderedImage band;  // width × rows from band.first_row (unresolved, bound, counts included)
 };
 
 // Writes the piece atomically (io/output_file.h). Format (docs/FILES.md): the line

@@ -71,6 +71,14 @@ struct RenderJob {
   // the same bits. 0: the fixed S×S grid (no refinement).
   double pixel_tolerance = 0.0;
   int max_refinements = 0;  // S·3^max_refinements ≤ kMaxAdaptiveSamplesPerAxis
+  // Mastin's adaptive anti-aliasing (`render.mastin_antialiasing`; Mastin, Watterberg & Mareda
+  // 1987: "16 extra rays per pixel in the neighborhood of large color discontinuities"): after
+  // the S×S grid, a pixel whose luminance contrast with one of its four neighbours,
+  // |Y_p − Y_q|/(Y_p + Y_q) of the S×S means, exceeds this value gets 16 more samples at
+  // ((a + ½)/4, (b + ½)/4), a, b = 0…3, and is resolved from all S² + 16 (each weighted
+  // 1/(S² + 16), the S² first). The neighbours above and below a band are rendered too, so a
+  // band gives the bits of the whole image. 0: off. Not with pixel_tolerance or keep_samples.
+  double antialiasing_contrast = 0.0;
   int threads = 1;
   // The pixel rows rendered, [first_row, last_row) of the camera's image (last_row −1: to the
   // bottom): a band of the image, each pixel the same bits as in the whole image (tiles,
@@ -128,11 +136,18 @@ struct RenderedImage {
   // its S×S samples, 1/S² each, summed in row-major order.
   std::vector<Vec3> sample_radiance;
   long capped_pixels = 0;        // adaptive pixels that reached the cap above the tolerance
+  long antialiased_pixels = 0;   // pixels that got Mastin's 16 extra samples
   long unconverged_samples = 0;  // samples whose reference integrals missed the tolerance
   long integrand_evaluations = 0;
   SlopeVariance unresolved;  // the BRDF roughness used
   double displacement_bound = 0.0;
 };
+
+// The extra samples per axis of Mastin's adaptive anti-aliasing (4 × 4 = 16).
+inline constexpr int kMastinExtraSamplesPerAxis = 4;
+// Luminance Y of linear sRGB (ITU-R BT.709 weights) and the contrast |Y_a − Y_b|/(Y_a + Y_b) of
+// two pixels (0 when both are black): the discontinuity measure of Mastin's anti-aliasing.
+double luminance_contrast(const Vec3& a, const Vec3& b);
 
 // S·3^refinements: the samples per axis of a pixel of S×S refined `refinements` times (the cap
 // of adaptive sampling; S without refinement).

@@ -96,6 +96,7 @@ const std::vector<std::string>& scene_key_paths() {
       "render.pixel_tolerance",
       "render.max_samples_per_pixel",
       "render.footprint_filtering",
+      "render.mastin_antialiasing",
       "render.renderer",
       "render.tone_key",
       "render.tone_white",
@@ -631,6 +632,11 @@ void parse_rendering(const Section& top, Scene& scene) {
   parse_adaptive_sampling(render, im);
   im.footprint_filtering = render.boolean("footprint_filtering", false);
   im.renderer = choice(render, "renderer", kRenderers, "raster");
+  im.mastin_antialiasing = render.number("mastin_antialiasing", 0.0, 1e-3, 1.0);
+  if (im.mastin_antialiasing > 0.0 && im.pixel_tolerance > 0.0) {
+    throw SceneError("render.mastin_antialiasing",
+                     "not with render.pixel_tolerance (choose one way to add samples)");
+  }
   im.tone_key = render.number("tone_key", im.tone_key, 1e-3, 1.0);
   im.tone_white = render.number("tone_white", im.tone_white, 0.0, 1e30);
   try {
@@ -923,6 +929,7 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) 
   job.max_refinements = scene.image.max_refinements;
   job.footprint_filtering = scene.image.footprint_filtering;
   job.renderer = scene.image.renderer;
+  job.antialiasing_contrast = scene.image.mastin_antialiasing;
   job.threads = threads;
   return job;
 }

@@ -52,6 +52,7 @@ struct ImageSettings {
   double pixel_tolerance = 0.0;
   int max_refinements = 0;
   bool footprint_filtering = false;      // RenderJob::footprint_filtering
+  double mastin_antialiasing = 0.0;      // RenderJob::antialiasing_contrast (0: off)
   Renderer renderer = Renderer::raster;  // RenderJob::renderer (`render --renderer` overrides)
   double tone_key = 0.18;                // Reinhard key a for the PNG preview
   double tone_white = 0.0;               // L_white for the preview; 0: the largest scaled luminance

@@ -1,0 +1,136 @@
+// Mastin's adaptive anti-aliasing (issue 17, point 3; render.mastin_antialiasing): 16 extra
+// samples in the pixels whose luminance contrast with a neighbour exceeds the threshold.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "conformance/scene_objects.h"
+#include "raster/renderer.h"
+#include "scene/scene.h"
+#include "test_support.h"
+
+using namespace oceanref;
+using nlohmann::json;
+
+namespace {
+
+// The buoy on the sea (its outline and the horizon are the discontinuities), 1 spp.
+json aa_scene(double threshold) {
+  json s = json::parse(R"({
+    "seed": 2,
+    "waves": {"spectrum": {"model": "jonswap", "wind_speed": 8, "fetch": 50000},
+              "cascades": {"sizes": [200, 37]}, "resolution": 32, "choppiness": -0.8},
+    "camera": {"position": [0, 2.5, 0], "look_at": [0, 0.6, 14], "vertical_fov_deg": 40},
+    "grid": {"columns": 96, "rows": 96},
+    "atmosphere": {"sun_zenith_deg": 70, "sun_azimuth_deg": 60},
+    "shading": {"accuracy": "fast"},
+    "render": {"width": 48, "height": 32, "samples_per_pixel": 1},
+    "objects": [{"obj": "", "position": [0, 0, 12], "scale": 1.5}]})");
+  s["objects"][0]["obj"] = OCEANREF_SOURCE_DIR "/reference/objects/buoy.obj";
+  if (threshold > 0.0) s["render"]["mastin_antialiasing"] = threshold;
+  return s;
+}
+
+struct AaRender {
+  Scene scene;
+  Ocean ocean;
+  SceneObjects objects;
+  RenderJob job;
+  SlopeVariance unresolved;
+};
+
+std::unique_ptr<AaRender> aa_prepare(const json& document, Renderer renderer, int spp = 1,
+                                     int threads = 2) {
+  auto r = std::make_unique<AaRender>();
+  r->scene = parse_scene(document);
+  r->scene.image.samples_per_axis = static_cast<int>(std::lround(std::sqrt(spp)));
+  r->ocean = realize_ocean(r->scene.waves, threads);
+  r->objects = load_scene_objects(r->scene);
+  r->job = scene_render_job(r->scene, r->ocean, threads);
+  r->job.objects = &r->objects;
+  r->job.renderer = renderer;
+  r->unresolved = unresolved_slope_variance(r->job, r->scene.waves);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("Mastin anti-aliasing: the luminance contrast") {
+  CHECK(luminance_contrast({1, 1, 1}, {0, 0, 0}) == 1.0);
+  CHECK(luminance_contrast({0, 0, 0}, {0, 0, 0}) == 0.0);
+  CHECK(luminance_contrast({2, 2, 2}, {1, 1, 1}) == doctest::Approx(1.0 / 3.0).epsilon(1e-15));
+  // BT.709 weights: pure green is brighter than pure red.
+  CHECK(luminance_contrast({0, 1, 0}, {1, 0, 0}) ==
+        doctest::Approx((0.7152 - 0.2126) / (0.7152 + 0.2126)).epsilon(1e-15));
+}
+
+TEST_CASE(
+    "Mastin anti-aliasing: flagged pixels are the mean of S² + 16 samples, others unchanged") {
+  for (const Renderer renderer : {Renderer::raster, Renderer::raytrace}) {
+    CAPTURE(static_cast<int>(renderer));
+    const double threshold = 0.05;
+    const auto base = aa_prepare(aa_scene(0.0), renderer);
+    const RenderedImage one = render(base->job, base->unresolved);
+    const auto dense = aa_prepare(aa_scene(0.0), renderer, 16);
+    const RenderedImage sixteen = render(dense->job, dense->unresolved);
+    const auto aa = aa_prepare(aa_scene(threshold), renderer);
+    const RenderedImage image = render(aa->job, aa->unresolved);
+    const int w = image.width, h = image.height;
+    const auto at = [&](int x, int y) { return static_cast<std::size_t>(y * w + x); };
+    long flagged = 0;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        double contrast = 0.0;
+        const int dx[] = {-1, 1, 0, 0}, dy[] = {0, 0, -1, 1};
+        for (int n = 0; n < 4; ++n) {
+          const int nx = x + dx[n], ny = y + dy[n];
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          contrast = std::fmax(
+              contrast, luminance_contrast(one.radiance[at(x, y)], one.radiance[at(nx, ny)]));
+        }
+        const Vec3& got = image.radiance[at(x, y)];
+        if (contrast > threshold) {
+          ++flagged;
+          // (1 sample + the 16 of the 4×4 grid, which a 16-spp render holds) / 17.
+          for (std::size_t c = 0; c < 3; ++c) {
+            const double expected =
+                (one.radiance[at(x, y)][c] + 16.0 * sixteen.radiance[at(x, y)][c]) / 17.0;
+            CHECK(got[c] == doctest::Approx(expected).epsilon(1e-12));
+          }
+        } else {
+          CHECK(got == one.radiance[at(x, y)]);
+        }
+      }
+    }
+    MESSAGE("flagged " << flagged << " of " << w * h);
+    CHECK(flagged == image.antialiased_pixels);
+    CHECK(flagged > 20);
+    CHECK(flagged < w * h / 2);
+    // Bands (each renders its neighbour rows) and threads give the same bits.
+    const RenderFrame frame = prepare_frame(aa->job, aa->unresolved);
+    const RenderedImage top = render_rows(frame, 0, 13);
+    const RenderedImage bottom = render_rows(frame, 13, h);
+    std::vector<Vec3> joined = top.radiance;
+    joined.insert(joined.end(), bottom.radiance.begin(), bottom.radiance.end());
+    CHECK(testing::same_bits(joined, image.radiance));
+    CHECK(top.antialiased_pixels + bottom.antialiased_pixels == image.antialiased_pixels);
+    const auto single = aa_prepare(aa_scene(threshold), renderer, 1, 1);
+    CHECK(testing::same_bits(render(single->job, single->unresolved).radiance, image.radiance));
+  }
+}
+
+TEST_CASE("Mastin anti-aliasing: a scene setting, not with adaptive sampling") {
+  json s = aa_scene(0.1);
+  CHECK(parse_scene(s).image.mastin_antialiasing == 0.1);
+  s["render"]["pixel_tolerance"] = 0.01;
+  try {
+    (void)parse_scene(s);
+    FAIL("accepted with pixel_tolerance");
+  } catch (const SceneError& e) {
+    CHECK(e.path() == "render.mastin_antialiasing");
+  }
+  s = aa_scene(0.0);
+  s["render"]["mastin_antialiasing"] = 0;
+  CHECK_THROWS_AS((void)parse_scene(s), SceneError);
+}
