@@ -577,6 +577,94 @@ RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
 }
 
 namespace {
+// Mastin's anti-aliasing of the band [first_row, last_row) of `image` (its S×S means already
+// resolved from `fragments`): the pixels whose contrast with a neighbour exceeds the job's
+// threshold resolved again from their S×S samples and 16 more (RenderJob::antialiasing_contrast).
+// Returns how many.
+long add_mastin_samples(const RenderFrame& frame, const std::vector<Fragment>& fragments,
+                        const SampleGrid& grid,
+                        const std::vector<std::vector<std::uint32_t>>& row_triangles, int first_row,
+                        int last_row, RenderedImage& image) {
+  const RenderJob& job = frame.job;
+  const Geometry& g = frame.geometry;
+  const int s = job.samples_per_axis;
+  // The S×S means of the band and of the rows just above and below it (rendered alone, the
+  // same bits as in the whole image), before any pixel gets its extra samples.
+  const auto mean_row = [&](int row) -> std::vector<Vec3> {
+    if (row < 0 || row >= job.camera.height) return {};
+    if (row >= first_row && row < last_row) {
+      const auto begin =
+          image.radiance.begin() + static_cast<std::ptrdiff_t>(row - first_row) * image.width;
+      return {begin, begin + image.width};
+    }
+    return render_rows_with(frame, row, row + 1, {}, nullptr, false).radiance;
+  };
+  std::vector<std::vector<Vec3>> means;  // rows first_row − 1 … last_row
+  for (int row = first_row - 1; row <= last_row; ++row) means.push_back(mean_row(row));
+  const auto at = [&](int row, int x) -> const Vec3* {
+    const std::vector<Vec3>& r = means[static_cast<std::size_t>(row - first_row + 1)];
+    if (r.empty() || x < 0 || x >= image.width) return nullptr;
+    return &r[static_cast<std::size_t>(x)];
+  };
+  const int extra = kMastinExtraSamplesPerAxis;
+  const SampleGrid fine{job.camera.width, job.camera.height, extra};
+  std::atomic<long> antialiased{0};
+  parallel_for(image.height, job.threads, [&](int y) {
+    const int row = first_row + y;
+    std::vector<SampleValue> values;
+    std::vector<Fragment> window;
+    std::vector<std::uint32_t> subset;
+    long count = 0;
+    for (int x = 0; x < image.width; ++x) {
+      const Vec3& centre = *at(row, x);
+      double contrast = 0.0;
+      for (const Vec3* n : {at(row, x - 1), at(row, x + 1), at(row - 1, x), at(row + 1, x)}) {
+        if (n != nullptr) contrast = std::fmax(contrast, luminance_contrast(centre, *n));
+      }
+      if (!(contrast > job.antialiasing_contrast)) continue;
+      ++count;
+      // The S×S samples again (the same fragments, the same bits), then the 16 extra ones.
+      values.clear();
+      const auto shade_at = [&](const Fragment& f, const SampleGrid& samples, int r, int c) {
+        const glm::dvec3 ray = ray_direction(job.camera, samples.sample_x(c), samples.sample_y(r));
+        return sample_value(shade_sample(frame, f, ray, samples.samples_per_axis));
+      };
+      for (int b = 0; b < s; ++b) {
+        for (int a = 0; a < s; ++a) {
+          const std::size_t i =
+              static_cast<std::size_t>(y * s + b) * static_cast<std::size_t>(grid.columns()) +
+              static_cast<std::size_t>(x * s + a);
+          values.push_back(shade_at(fragments[i], grid, row * s + b, x * s + a));
+        }
+      }
+      window.assign(static_cast<std::size_t>(extra * extra), Fragment{});
+      if (job.renderer == Renderer::raytrace) {
+        trace_fragments(job, g, fine, row * extra, row * extra + extra, window, row * extra,
+                        FragmentColumns{x * extra, extra}, 1);
+      } else {
+        subset.clear();
+        for (const std::uint32_t t : row_triangles[static_cast<std::size_t>(y)]) {
+          if (reaches_column(g, t, x)) subset.push_back(t);
+        }
+        rasterize(g.screen, g.triangles, subset, fine, row * extra, row * extra + extra,
+                  job.grid.near, window, row * extra, FragmentColumns{x * extra, extra});
+      }
+      for (int b = 0; b < extra; ++b) {
+        for (int a = 0; a < extra; ++a) {
+          values.push_back(shade_at(window[static_cast<std::size_t>(b * extra + a)], fine,
+                                    row * extra + b, x * extra + a));
+        }
+      }
+      const std::size_t pixel =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+          static_cast<std::size_t>(x);
+      resolve_into(image, pixel, values, fixed_grid_estimate(values), job.layers);
+    }
+    antialiased += count;
+  });
+  return antialiased;
+}
+
 RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last_row,
                                const std::function<void(double)>& progress, RenderTimes* times,
                                bool antialias) {
@@ -733,82 +821,8 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     }
   });
   if (antialias) {
-    // The S×S means of the band and of the rows just above and below it (rendered alone, the
-    // same bits as in the whole image), before any pixel gets its extra samples.
-    const auto mean_row = [&](int row) -> std::vector<Vec3> {
-      if (row < 0 || row >= job.camera.height) return {};
-      if (row >= first_row && row < last_row) {
-        const auto begin =
-            image.radiance.begin() + static_cast<std::ptrdiff_t>(row - first_row) * image.width;
-        return {begin, begin + image.width};
-      }
-      return render_rows_with(frame, row, row + 1, {}, nullptr, false).radiance;
-    };
-    std::vector<std::vector<Vec3>> means;  // rows first_row − 1 … last_row
-    for (int row = first_row - 1; row <= last_row; ++row) means.push_back(mean_row(row));
-    const auto at = [&](int row, int x) -> const Vec3* {
-      const std::vector<Vec3>& r = means[static_cast<std::size_t>(row - first_row + 1)];
-      if (r.empty() || x < 0 || x >= image.width) return nullptr;
-      return &r[static_cast<std::size_t>(x)];
-    };
-    const int extra = kMastinExtraSamplesPerAxis;
-    const SampleGrid fine{job.camera.width, job.camera.height, extra};
-    std::atomic<long> antialiased{0};
-    parallel_for(image.height, job.threads, [&](int y) {
-      const int row = first_row + y;
-      std::vector<SampleValue> values;
-      std::vector<Fragment> window;
-      std::vector<std::uint32_t> subset;
-      long count = 0;
-      for (int x = 0; x < image.width; ++x) {
-        const Vec3& centre = *at(row, x);
-        double contrast = 0.0;
-        for (const Vec3* n : {at(row, x - 1), at(row, x + 1), at(row - 1, x), at(row + 1, x)}) {
-          if (n != nullptr) contrast = std::fmax(contrast, luminance_contrast(centre, *n));
-        }
-        if (!(contrast > job.antialiasing_contrast)) continue;
-        ++count;
-        // The S×S samples again (the same fragments, the same bits), then the 16 extra ones.
-        values.clear();
-        const auto shade_at = [&](const Fragment& f, const SampleGrid& samples, int r, int c) {
-          const glm::dvec3 ray =
-              ray_direction(job.camera, samples.sample_x(c), samples.sample_y(r));
-          return sample_value(shade_sample(frame, f, ray, samples.samples_per_axis));
-        };
-        for (int b = 0; b < s; ++b) {
-          for (int a = 0; a < s; ++a) {
-            const std::size_t i =
-                static_cast<std::size_t>(y * s + b) * static_cast<std::size_t>(grid.columns()) +
-                static_cast<std::size_t>(x * s + a);
-            values.push_back(shade_at(fragments[i], grid, row * s + b, x * s + a));
-          }
-        }
-        window.assign(static_cast<std::size_t>(extra * extra), Fragment{});
-        if (job.renderer == Renderer::raytrace) {
-          trace_fragments(job, g, fine, row * extra, row * extra + extra, window, row * extra,
-                          FragmentColumns{x * extra, extra}, 1);
-        } else {
-          subset.clear();
-          for (const std::uint32_t t : row_triangles[static_cast<std::size_t>(y)]) {
-            if (reaches_column(g, t, x)) subset.push_back(t);
-          }
-          rasterize(g.screen, g.triangles, subset, fine, row * extra, row * extra + extra,
-                    job.grid.near, window, row * extra, FragmentColumns{x * extra, extra});
-        }
-        for (int b = 0; b < extra; ++b) {
-          for (int a = 0; a < extra; ++a) {
-            values.push_back(shade_at(window[static_cast<std::size_t>(b * extra + a)], fine,
-                                      row * extra + b, x * extra + a));
-          }
-        }
-        const std::size_t pixel =
-            static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
-            static_cast<std::size_t>(x);
-        resolve_into(image, pixel, values, fixed_grid_estimate(values), layers);
-      }
-      antialiased += count;
-    });
-    image.antialiased_pixels = antialiased;
+    image.antialiased_pixels =
+        add_mastin_samples(frame, fragments, grid, row_triangles, first_row, last_row, image);
   }
   clock.lap(&RenderTimes::shading);
   image.unconverged_samples = unconverged;
