@@ -105,3 +105,33 @@ def test_max_memory_refuses_a_render_before_it_starts(tiny):
     with pytest.raises(ValueError, match="max_memory"):
         oceanref.render(tiny, max_memory=1000)
     assert oceanref.render(tiny, max_memory=2**24).shape == (24, 40, 3)
+
+
+def test_objects_and_their_reflection(cli, tmp_path):
+    """A scene with an OBJ object: relative to the scene file, the same bits as the command line,
+    and the ray tracer's reflection of it (render.renderer or renderer=)."""
+    import json
+    import shutil
+    from conftest import SOURCE_DIR
+    shutil.copy(SOURCE_DIR / "reference" / "objects" / "buoy.obj", tmp_path / "buoy.obj")
+    scene = dict(TINY, camera={"position": [0, 2.5, 0], "look_at": [0, 0.6, 14]},
+                 objects=[{"obj": "buoy.obj", "position": [0, 0, 12], "scale": 1.5,
+                           "material": {"albedo": [0.8, 0.15, 0.1]}}])
+    path = tmp_path / "buoy_scene.json"
+    path.write_text(json.dumps(scene))
+    raster = oceanref.render(path, threads=2)
+    sea = oceanref.render(dict(scene, objects=[]), threads=2)
+    assert (raster != sea).any(axis=2).sum() > 10  # the buoy is seen
+    traced = oceanref.render(path, threads=2, renderer="raytrace")
+    # Beyond rounding (the two renderers' doubles differ in the last bits: within 1e-9), only
+    # the buoy's reflection in the sea differs.
+    reflected = (np.abs(traced - raster) > 1e-9 * np.abs(raster) + 1e-12).any(axis=2)
+    assert 0 < reflected.sum() < reflected.size // 4
+    out = tmp_path / "traced.exr"
+    cli("render", path, "-o", out, "--renderer", "raytrace", "--threads", "2")
+    (part,) = oceanref.read_exr(out)
+    assert part["attributes"]["oceanref.renderer"] == "raytrace"
+    assert oceanref.radiance_f64_sha256(traced) == part["attributes"]["oceanref.radiance_f64_sha256"]
+    # The scene's own render.renderer is what renderer=None uses.
+    path.write_text(json.dumps(dict(scene, render=dict(scene["render"], renderer="raytrace"))))
+    np.testing.assert_array_equal(oceanref.render(path, threads=1), traced)
