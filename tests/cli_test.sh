@@ -273,6 +273,10 @@ ls -A "$tmp" | grep -q '^[.]oceanref-' && fail "a failed write left a temporary 
 
 expect 0 '^sample,image_x,image_y,hit,depth' probe "$tmp/render.json" --pixel 20,20
 [ "$(wc -l <"$tmp/out")" -eq 7 ] || fail "probe did not print 4 samples and the pixel"
+# A sample on the buoy of the objects golden: object 1, reflects_object 0 (the last columns).
+expect 0 ',object,reflects_object$' probe \
+  "$source_dir/reference/scenes/golden/buoy_reflected_raytrace.json" --pixel 48,30
+sed -n 2p "$tmp/out" | grep -q ',1,0$' || fail "probe: the buoy's sample is not an object"
 expect 2 '--pixel.*inside the 40x24 image' probe "$tmp/render.json" --pixel 40,3
 expect 2 '--spp.*square' render "$tmp/render.json" -o "$tmp/x.exr" --spp 3
 printf '{"waves": {}, "render": {"samples_per_pixel": 2}}' >"$tmp/bad.json"

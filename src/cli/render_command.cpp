@@ -317,7 +317,8 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
            "normal_y,normal_z,view_x,view_y,view_z,sigma2_upwind,sigma2_crosswind,F_mean,"
            "sun_R,sun_G,sun_B,sky_R,sky_G,sky_B,sea_R,sea_G,sea_B,foam_coverage,R,G,B,F_mean_error,"
            "sun_error_R,sun_error_G,sun_error_B,sky_error_R,sky_error_G,sky_error_B,sea_error_R,"
-           "sea_error_G,sea_error_B,error_R,error_G,error_B,evaluations,converged\n";
+           "sea_error_G,sea_error_B,error_R,error_G,error_B,evaluations,converged,object,"
+           "reflects_object\n";
     for (std::size_t i = 0; i < samples.size(); ++i) {
       const SampleProbe& s = samples[i];
       const double values[] = {s.depth,
@@ -371,7 +372,7 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
       out << i << ',' << format_number(s.image_x) << ',' << format_number(s.image_y) << ','
           << (s.hit ? 1 : 0);
       for (const double v : values) out << ',' << format_number(v);
-      out << '\n';
+      out << ',' << (s.object ? 1 : 0) << ',' << (s.reflects_object ? 1 : 0) << '\n';
     }
     // The pixel exactly as render writes it (its float32 is the EXR's value).
     const Vec3 pixel = resolve_pixel(samples);
