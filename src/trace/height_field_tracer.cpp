@@ -63,6 +63,13 @@ void test_triangle(const TraceGrid& grid, std::size_t index, const glm::dvec3& o
   best = {t, id, {1.0 - u - w, u, w}};
 }
 
+// Pads a node's box so that a hit on an edge's slack (trace_ray) lies inside it.
+void pad_box(BoundsTree::Node& node) {
+  const glm::dvec3 pad(1e-9 * (1.0 + std::max({glm::length(node.lower), glm::length(node.upper)})));
+  node.lower -= pad;
+  node.upper += pad;
+}
+
 int build(const TraceGrid& grid, BoundsTree& tree, int i0, int i1, int j0, int j1) {
   const int index = static_cast<int>(tree.nodes.size());
   tree.nodes.emplace_back();
@@ -78,10 +85,7 @@ int build(const TraceGrid& grid, BoundsTree& tree, int i0, int i1, int j0, int j
       node.upper = glm::max(node.upper, p);
     }
   }
-  // Padded so that a hit on an edge's slack (trace_ray) lies inside its cell's box.
-  const glm::dvec3 pad(1e-9 * (1.0 + std::max({glm::length(node.lower), glm::length(node.upper)})));
-  node.lower -= pad;
-  node.upper += pad;
+  pad_box(node);
   if (i1 - i0 == 1 && j1 - j0 == 1) {
     node.first = 2 * (j0 * (grid.columns - 1) + i0);
     node.count = 2;
@@ -96,7 +100,7 @@ int build(const TraceGrid& grid, BoundsTree& tree, int i0, int i1, int j0, int j
   return index;
 }
 
-// The box of triangles order[from, to), padded as above.
+// The box of triangles order[from, to), padded.
 void bound_triangles(const TraceGrid& mesh, const std::vector<std::uint32_t>& order,
                      std::size_t from, std::size_t to, BoundsTree::Node& node) {
   node.lower = glm::dvec3(std::numeric_limits<double>::infinity());
@@ -107,9 +111,7 @@ void bound_triangles(const TraceGrid& mesh, const std::vector<std::uint32_t>& or
       node.upper = glm::max(node.upper, (*mesh.vertices)[v]);
     }
   }
-  const glm::dvec3 pad(1e-9 * (1.0 + std::max({glm::length(node.lower), glm::length(node.upper)})));
-  node.lower -= pad;
-  node.upper += pad;
+  pad_box(node);
 }
 
 glm::dvec3 centroid(const TraceGrid& mesh, std::uint32_t t) {
