@@ -373,7 +373,7 @@ expect 2 'same file' render "$tmp/render.json" -o "$tmp/x.exr" --samples "$tmp/x
 # tests/test_tracer.cpp's); a renderer that does not exist and --tile are refused.
 expect 0 '^pixel_sha256,[0-9a-f]{64}$' render "$tmp/render.json" -o "$tmp/rt.exr" --renderer raytrace \
   --threads 2
-expect 2 '--renderer: expected raster or raytrace' render "$tmp/render.json" -o "$tmp/x.exr" \
+expect 2 '--renderer: expected one of raster, raytrace, raytrace_surface' render "$tmp/render.json" -o "$tmp/x.exr" \
   --renderer pathtrace
 expect 2 '--renderer.*not with --tile' render "$tmp/render.json" -o "$tmp/x.piece" \
   --renderer raytrace --tile 0/2

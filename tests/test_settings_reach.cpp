@@ -162,8 +162,13 @@ std::vector<Row> reach_rows() {
       changes("render.max_samples_per_pixel", 9, kPixels,
               ctx(R"({"render": {"pixel_tolerance": 1e-3}})")),
       changes("render.footprint_filtering", true, kPixels),
-      // The ray tracer on the same grid: the same surfaces, other rounding of the weights.
-      changes("render.renderer", "raytrace", kPixels),
+      // The ray tracer on the continuous surface: other visibility at the horizon's crests,
+      // other hit points. (raytrace, on the same grid, differs only in the rounding of the
+      // weights: tests/test_tracer.cpp.)
+      changes("render.renderer", "raytrace_surface", kPixels),
+      // Other patches to start Newton's method from: other rounding of the hits, at least.
+      changes("render.surface_tolerance", 1.0, kPixels,
+              json::parse(R"({"render": {"renderer": "raytrace_surface"}})")),
       changes("render.mastin_antialiasing", 0.02, kPixels),
       {"render.tone_key", 0.3, json::object(), Effect::preview},
       {"render.tone_white", 2.0, json::object(), Effect::preview},
@@ -210,6 +215,7 @@ std::vector<InertRow> inert_rows() {
        ctx(R"({"waves": {"realization": "mastin", "cascades": {"sizes": [400, 20]}}})"),
        "not constant_shift"},
       {"waves.foam.steps", 3, ctx(R"({"waves": {"choppiness": 0}})"), "no foam"},
+      {"render.surface_tolerance", 1.0, json::object(), "not raytrace_surface"},
       {"waves.foam.decay", 3, ctx(R"({"waves": {"choppiness": -6}})"), "steps is 0"},
       {"waves.foam.time_step", 0.1, ctx(R"({"waves": {"choppiness": -6}})"), "steps is 0"},
       {"waves.foam.decay", 3, ctx(R"({"waves": {"choppiness": 0, "foam": {"steps": 3}}})"),

@@ -153,9 +153,10 @@ def render(scene, threads=0, spp=None, aov=False, lighting_error=False, samples=
     render --lighting-error``; costs a reference render). samples=True: the dict also holds
     samples (H·S, W·S, 3), every sample of the fixed S×S grid (sample (c, r) at image position
     ((c + ½)/S, (r + ½)/S); each pixel the mean of its S×S samples), as ``oceanref render
-    --samples``; not with render.pixel_tolerance. renderer: "raster" or "raytrace" (the
-    height-field ray tracer on the same grid, which also reflects the scene's objects, as
-    ``oceanref render --renderer``); None: the scene's render.renderer. max_memory:
+    --samples``; not with render.pixel_tolerance. renderer: "raster", "raytrace" (the
+    height-field ray tracer on the same grid, which also reflects the scene's objects) or
+    "raytrace_surface" (the ray tracer against the continuous surface: ground-truth
+    visibility), as ``oceanref render --renderer``; None: the scene's render.renderer. max_memory:
     bytes; a render whose estimated buffers need more raises RuntimeError (as ``oceanref render
     --max-memory``).
     """

@@ -88,7 +88,7 @@ def test_spp_and_aov(tiny):
     # The second renderer: the same image up to rounding (tests/test_tracer.cpp: within 1e-9).
     f = oceanref.render(tiny, threads=2, spp=4, renderer="raytrace")
     np.testing.assert_allclose(f, b["radiance"], rtol=1e-9, atol=1e-12)
-    with pytest.raises(ValueError, match=r"^renderer: expected raster or raytrace"):
+    with pytest.raises(ValueError, match=r"^renderer: expected one of raster, raytrace, raytrace_surface"):
         oceanref.render(tiny, renderer="pathtrace")
 
 

@@ -179,11 +179,13 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
                   "(README, 'Same samples or converged'); not with render.pixel_tolerance or "
                   "--tile");
   cmd->add_option("--renderer", f->renderer,
-                  "raster (the scanline rasterizer) or raytrace (Mastin's height-field ray "
-                  "tracer on the same displaced grid: the second renderer, to check the first's "
-                  "visibility, and the one that reflects the scene's objects in the sea; README, "
-                  "'Two renderers'); default: the scene's render.renderer (raster); not with "
-                  "--tile");
+                  "raster (the scanline rasterizer), raytrace (Mastin's height-field ray tracer "
+                  "on the same displaced grid: the second renderer, to check the first's "
+                  "visibility, and one that reflects the scene's objects in the sea) or "
+                  "raytrace_surface (the ray tracer against the continuous surface the grid "
+                  "samples, to render.surface_tolerance: ground-truth visibility, slower; also "
+                  "reflects objects); README, 'Two renderers'; default: the scene's "
+                  "render.renderer (raster); not with --tile");
   cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
   cmd->add_option("--tile", f->tile,
                   "I/N: render only tile I of N (pixel rows I*H/N to (I+1)*H/N - 1, 0 <= I < N "

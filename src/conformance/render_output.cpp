@@ -358,6 +358,10 @@ std::string sampling_text(const RenderJob& job) {
   }
   if (job.footprint_filtering) text += ", footprint-filtered";
   if (job.renderer == Renderer::raytrace) text += ", ray traced";
+  if (job.renderer == Renderer::raytrace_surface) {
+    text +=
+        ", ray traced on the continuous surface to " + format_number(job.surface_tolerance) + " px";
+  }
   return text;
 }
 

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -74,6 +75,20 @@ void add_objects(const RenderJob& job, Geometry& g) {
   }
 }
 
+// The geometry's continuous surface (Renderer::raytrace_surface) without its evaluation: the
+// grid's x0, p at them and the proven bounds.
+TracedSurface surface_view(const Geometry& g) {
+  TracedSurface s;
+  s.columns = g.grid.columns;
+  s.rows = g.grid.rows;
+  s.base = &g.grid.base;
+  s.corners = &g.surface_corners;
+  const DisplacedSurfaceBounds& b = g.surface_bounds;
+  s.lipschitz = glm::dvec3(b.lipschitz[0], b.lipschitz[1], b.lipschitz[2]);
+  s.offset = glm::dvec3(b.offset[0], b.offset[1], b.offset[2]);
+  return s;
+}
+
 // The vertices read the waves filtered to their grid cell when filtering.
 Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double bound,
                         const std::optional<FootprintFilter>& filter) {
@@ -105,7 +120,7 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
     g.triangles = grid_triangles(g.grid);
   }
   add_objects(job, g);
-  if (job.renderer == Renderer::raytrace) {
+  if (is_ray_traced(job.renderer)) {
     // The rasterizer skips a triangle with a vertex at or behind the near plane (or not finite).
     const auto behind = [&](const std::array<std::uint32_t, 3>& t) {
       for (const std::uint32_t v : t) {
@@ -119,16 +134,98 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
     for (std::size_t t = 0; t < g.object_triangles.size(); ++t) {
       g.object_untraced[t] = behind(g.object_triangles[t]);
     }
-    if (g.grid.visible) g.bounds = build_bounds_tree(trace_view(g));
+    if (g.grid.visible && job.renderer == Renderer::raytrace) {
+      g.bounds = build_bounds_tree(trace_view(g));
+    }
     g.object_bounds = build_triangle_tree(object_view(g));
+  }
+  if (g.grid.visible && job.renderer == Renderer::raytrace_surface) {
+    g.surface_corners = g.world;
+    g.surface_corners.resize(g.grid.base.size());  // without the objects' vertices
+    if (filter) {  // the vertices read filtered waves; the traced surface is the unfiltered one
+      parallel_for(g.grid.rows, job.threads, [&](int j) {
+        for (int i = 0; i < g.grid.columns; ++i) {
+          const std::size_t k =
+              static_cast<std::size_t>(j) * static_cast<std::size_t>(g.grid.columns) +
+              static_cast<std::size_t>(i);
+          const DisplacedPoint p =
+              displaced_point(*job.ocean, fields.grids, fields.evolved, g.grid.base[k].x,
+                              g.grid.base[k].y, job.shading.interpolation, job.shading.normals);
+          g.surface_corners[k] = {p.x, p.height, p.z};
+        }
+      });
+    }
+    g.surface_bounds = displaced_surface_bounds(*job.ocean, fields.grids, fields.evolved,
+                                                job.shading.interpolation);
+    g.surface_tree = build_surface_tree(surface_view(g));
   }
   return g;
 }
 
+// The continuous surface of the frame (Renderer::raytrace_surface) for the surface tracer: the
+// geometry's corners, bounds and the unfiltered p(x0) of waves/surface.h.
+TracedSurface traced_surface(const RenderFrame& frame) {
+  const RenderJob& job = frame.job;
+  TracedSurface s = surface_view(frame.geometry);
+  s.point = [&frame, &job](const glm::dvec2& x0) {
+    const DisplacedPoint p =
+        displaced_point(*job.ocean, frame.fields.grids, frame.fields.evolved, x0.x, x0.y,
+                        job.shading.interpolation, job.shading.normals);
+    return glm::dvec3(p.x, p.height, p.z);
+  };
+  s.point_derivatives = [&frame, &job](const glm::dvec2& x0) {
+    const DisplacedPointDerivatives d =
+        displaced_point_derivatives(*job.ocean, frame.fields.grids, frame.fields.evolved, x0.x,
+                                    x0.y, job.shading.interpolation);
+    return SurfacePoint{glm::dvec3(d.point.x, d.point.height, d.point.z),
+                        glm::dvec3(d.d_dx0[0], d.d_dx0[1], d.d_dx0[2]),
+                        glm::dvec3(d.d_dz0[0], d.d_dz0[1], d.d_dz0[2])};
+  };
+  return s;
+}
+
+// A hit on the continuous surface as a fragment of the grid's triangles: the triangle of the
+// hit's cell whose base (x0) holds the hit's x0, and its barycentric weights there, so that
+// shade_sample's Σ w·x0 is the hit's x0 (to rounding).
+RayHit surface_fragment_hit(const Geometry& g, const SurfaceHit& hit) {
+  RayHit out;
+  out.t = hit.t;
+  const auto cross = [](const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; };
+  double best_minimum = -std::numeric_limits<double>::infinity();
+  for (const std::int64_t triangle : {2 * hit.cell, 2 * hit.cell + 1}) {
+    const auto& t = g.triangles[static_cast<std::size_t>(triangle)];
+    const glm::dvec2 a = g.grid.base[t[0]], b = g.grid.base[t[1]], c = g.grid.base[t[2]];
+    const double area = cross(b - a, c - a);
+    const double u = cross(hit.x0 - a, c - a) / area, v = cross(b - a, hit.x0 - a) / area;
+    const std::array<double, 3> w{1.0 - u - v, u, v};
+    const double minimum = std::min({w[0], w[1], w[2]});
+    if (!(minimum > best_minimum)) continue;
+    best_minimum = minimum;
+    out.triangle = triangle;
+    // Outside by rounding only: clamped and renormalized.
+    const double sum = std::max(w[0], 0.0) + std::max(w[1], 0.0) + std::max(w[2], 0.0);
+    for (std::size_t k = 0; k < 3; ++k) out.weights[k] = std::max(w[k], 0.0) / sum;
+  }
+  return out;
+}
+
 // The nearest hit of a ray from the camera: the sea's or an object's (objects numbered from
 // sea_triangles on); equal distances to the sea, as the rasterizer's depth ties.
-RayHit trace_scene(const Geometry& g, const glm::dvec3& origin, const glm::dvec3& direction) {
-  RayHit sea = trace_ray(trace_view(g), g.bounds, origin, direction);
+RayHit trace_scene(const RenderFrame& frame, const TracedSurface* surface, const glm::dvec3& origin,
+                   const glm::dvec3& direction) {
+  const Geometry& g = frame.geometry;
+  RayHit sea;
+  if (surface != nullptr) {
+    SurfaceTraceSettings settings;
+    const Camera& camera = frame.job.camera;
+    settings.angular_tolerance = frame.job.surface_tolerance * camera.vertical_fov / camera.height;
+    settings.forward = camera.forward;
+    settings.near = frame.job.grid.near;
+    const SurfaceHit hit = trace_surface(*surface, g.surface_tree, settings, origin, direction);
+    if (hit.hit) sea = surface_fragment_hit(g, hit);
+  } else {
+    sea = trace_ray(trace_view(g), g.bounds, origin, direction);
+  }
   if (g.object_triangles.empty()) return sea;
   RayHit object = trace_ray(object_view(g), g.object_bounds, origin, direction);
   if (object.triangle < 0 || (sea.triangle >= 0 && !(object.t < sea.t))) return sea;
@@ -137,20 +234,25 @@ RayHit trace_scene(const Geometry& g, const glm::dvec3& origin, const glm::dvec3
 }
 
 // The fragments of sample rows [first_row, last_row), columns `window`, of `grid` by ray tracing
-// (Renderer::raytrace) into `out`, which holds rows from fragment_row on (as rasterize): each
-// sample's ray against the displaced grid, its nearest hit with the world-space weights (the
-// perspective-correct ones) and the view depth of the hit point.
-void trace_fragments(const RenderJob& job, const Geometry& g, const SampleGrid& grid, int first_row,
-                     int last_row, std::vector<Fragment>& out, int fragment_row,
-                     FragmentColumns window, int threads) {
-  if (g.triangles.empty()) return;
+// (Renderer::raytrace, raytrace_surface) into `out`, which holds rows from fragment_row on (as
+// rasterize): each sample's ray against the displaced grid (or the continuous surface), its
+// nearest hit with the world-space weights (the perspective-correct ones; on the surface, the
+// weights of the hit's x0) and the view depth of the hit point.
+void trace_fragments(const RenderFrame& frame, const SampleGrid& grid, int first_row, int last_row,
+                     std::vector<Fragment>& out, int fragment_row, FragmentColumns window,
+                     int threads) {
+  const RenderJob& job = frame.job;
+  if (frame.geometry.triangles.empty()) return;
+  const std::optional<TracedSurface> surface = job.renderer == Renderer::raytrace_surface
+                                                   ? std::optional(traced_surface(frame))
+                                                   : std::nullopt;
   const int count = window.count < 0 ? grid.columns() - window.first : window.count;
   parallel_for(last_row - first_row, threads, [&](int r) {
     const int row = first_row + r;
     for (int a = 0; a < count; ++a) {
       const int column = window.first + a;
       const glm::dvec3 d = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-      const RayHit hit = trace_scene(g, job.camera.position, d);
+      const RayHit hit = trace_scene(frame, surface ? &*surface : nullptr, job.camera.position, d);
       if (hit.triangle < 0) continue;
       Fragment& f =
           out[static_cast<std::size_t>(row - fragment_row) * static_cast<std::size_t>(count) +
@@ -191,7 +293,6 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
   const Geometry& g = frame.geometry;
   const FrameLighting& light = frame.light;
   SampleProbe p;
-  const ShadingSettings& sh = job.shading;
   if (f.triangle < 0) {
     // The sky (and the sun disk) behind the sea.
     const Vec3 d = to_vec3(ray);
@@ -215,8 +316,14 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
     p.x0 += f.weights[v] * g.grid.base[t[v]];
     p.position += f.weights[v] * g.world[t[v]];
   }
-  p.roughness = frame.unresolved;
   const Ocean& ocean = *job.ocean;
+  const ShadingSettings& sh = job.shading;
+  if (job.renderer == Renderer::raytrace_surface) {  // on the continuous surface, at x0
+    const DisplacedPoint q = displaced_point(ocean, frame.fields.grids, frame.fields.evolved,
+                                             p.x0.x, p.x0.y, sh.interpolation, sh.normals);
+    p.position = {q.x, q.height, q.z};
+  }
+  p.roughness = frame.unresolved;
   if (frame.filter) {
     // The sample's cell (1/S pixel) on the sea plane: the waves read filtered to it, and the
     // slope variance under it that the read normal lacks added to σ² (footprint_filter.h).
@@ -251,7 +358,7 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
   const SurfaceFrame surface = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
   p.lighting =
       lighting_terms(sh, job.sky, light, p.view, surface, p.roughness, job.estimate_fast_error);
-  if (job.renderer == Renderer::raytrace && job.object_reflections && !g.object_triangles.empty()) {
+  if (is_ray_traced(job.renderer) && job.object_reflections && !g.object_triangles.empty()) {
     // The mirror ray about the shading normal: an object there replaces the reflected sky.
     const double vn_shading = dot(p.view, p.normal);
     const Vec3 mirror = combine(2.0 * vn_shading, p.normal, -1.0, p.view);
@@ -287,15 +394,17 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
 }
 
 // The fragments of the sample rows [first_row, last_row).
-std::vector<Fragment> raster_pass(const RenderJob& job, const Geometry& g, const SampleGrid& grid,
-                                  int first_row, int last_row) {
+std::vector<Fragment> raster_pass(const RenderFrame& frame, const SampleGrid& grid, int first_row,
+                                  int last_row) {
+  const RenderJob& job = frame.job;
+  const Geometry& g = frame.geometry;
   const int rows = last_row - first_row;
   std::vector<Fragment> fragments = allocate_buffer<Fragment>(
       static_cast<std::size_t>(grid.columns()) * static_cast<std::size_t>(rows),
       "the sample fragments (one per sample of the image)");
   if (g.triangles.empty() || rows == 0) return fragments;
-  if (job.renderer == Renderer::raytrace) {
-    trace_fragments(job, g, grid, first_row, last_row, fragments, first_row, {}, job.threads);
+  if (is_ray_traced(job.renderer)) {
+    trace_fragments(frame, grid, first_row, last_row, fragments, first_row, {}, job.threads);
     return fragments;
   }
   // Bands of sample rows handed out one at a time (parallel_for): the sea's triangles crowd
@@ -638,8 +747,8 @@ long add_mastin_samples(const RenderFrame& frame, const std::vector<Fragment>& f
         }
       }
       window.assign(static_cast<std::size_t>(extra * extra), Fragment{});
-      if (job.renderer == Renderer::raytrace) {
-        trace_fragments(job, g, fine, row * extra, row * extra + extra, window, row * extra,
+      if (is_ray_traced(job.renderer)) {
+        trace_fragments(frame, fine, row * extra, row * extra + extra, window, row * extra,
                         FragmentColumns{x * extra, extra}, 1);
       } else {
         subset.clear();
@@ -686,7 +795,7 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
   image.displacement_bound = frame.displacement_bound;
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const int s = job.samples_per_axis;
-  const std::vector<Fragment> fragments = raster_pass(job, g, grid, first_row * s, last_row * s);
+  const std::vector<Fragment> fragments = raster_pass(frame, grid, first_row * s, last_row * s);
   clock.lap(&RenderTimes::raster);
   const auto pixels =
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
@@ -752,8 +861,8 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
       const int m = 3 * n;
       const SampleGrid samples{job.camera.width, job.camera.height, m};
       window.assign(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), Fragment{});
-      if (job.renderer == Renderer::raytrace) {
-        trace_fragments(job, g, samples, image_row * m, image_row * m + m, window, image_row * m,
+      if (is_ray_traced(job.renderer)) {
+        trace_fragments(frame, samples, image_row * m, image_row * m + m, window, image_row * m,
                         FragmentColumns{x * m, m}, 1);
       } else {
         rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
@@ -913,8 +1022,7 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const int s = job.samples_per_axis;
   // The pixel's sample rows only (the fragments of a full pass there, bit for bit).
-  const std::vector<Fragment> fragments =
-      raster_pass(job, frame.geometry, grid, pixel_y * s, pixel_y * s + s);
+  const std::vector<Fragment> fragments = raster_pass(frame, grid, pixel_y * s, pixel_y * s + s);
   std::vector<SampleProbe> out;
   for (int b = 0; b < s; ++b) {
     for (int a = 0; a < s; ++a) {

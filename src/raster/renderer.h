@@ -20,9 +20,11 @@
 #include "spectrum/moments.h"
 #include "trace/height_field_tracer.h"
 #include "trace/scene_objects.h"
+#include "trace/surface_tracer.h"
 #include "waves/footprint_filter.h"
 #include "waves/ocean.h"
 #include "waves/slope_budget.h"
+#include "waves/surface.h"
 
 namespace oceanref {
 
@@ -39,12 +41,21 @@ inline constexpr double kMinPixelTolerance = 1e-4;
 
 // Which renderer decides what a sample sees (`render --renderer`): the scanline rasterizer
 // (raster/rasterizer.h) or Mastin's height-field ray tracer (trace/height_field_tracer.h), both
-// on the same displaced projected grid and shaded the same way.
-enum class Renderer { raster, raytrace };
-inline constexpr std::array<Choice<Renderer>, 2> kRenderers{{
+// on the same displaced projected grid, or the ray tracer against the continuous surface the
+// grid samples (trace/surface_tracer.h: ground-truth visibility); all shaded the same way.
+enum class Renderer { raster, raytrace, raytrace_surface };
+inline constexpr std::array<Choice<Renderer>, 3> kRenderers{{
     {Renderer::raster, "raster"},
     {Renderer::raytrace, "raytrace"},
+    {Renderer::raytrace_surface, "raytrace_surface"},
 }};
+inline bool is_ray_traced(Renderer r) {
+  return r != Renderer::raster;
+}
+// The default and the range of RenderJob::surface_tolerance [pixels].
+inline constexpr double kDefaultSurfaceTolerance = 0.1;
+inline constexpr double kMinSurfaceTolerance = 1e-3;
+inline constexpr double kMaxSurfaceTolerance = 1.0;
 
 struct RenderJob {
   const Ocean* ocean = nullptr;
@@ -57,6 +68,11 @@ struct RenderJob {
   // is not integrated over the object). No shadows, in either renderer.
   const SceneObjects* objects = nullptr;
   bool object_reflections = true;
+  // Renderer::raytrace_surface (`render.surface_tolerance`): a patch of the surface is resolved
+  // when its bounding box, seen from the camera, spans at most this many pixels (of the pixel
+  // angle at the image centre, vertical_fov / height); rays that pass the surface by more are
+  // decided exactly (trace/surface_tracer.h).
+  double surface_tolerance = kDefaultSurfaceTolerance;
   double time = 0.0;
   Camera camera;
   ProjectedGridSettings grid;  // columns, rows, margin (the bound is filled in)
@@ -221,6 +237,12 @@ struct FrameGeometry {
   std::vector<std::array<std::uint32_t, 3>> object_triangles;
   std::vector<bool> object_untraced;
   BoundsTree object_bounds;
+  // Renderer::raytrace_surface only: the unfiltered surface p(x0) at the grid's vertices (its
+  // vertices in `world` are filtered with render.footprint_filtering), its proven bounds and the
+  // tree over its cells (trace/surface_tracer.h).
+  std::vector<glm::dvec3> surface_corners;
+  DisplacedSurfaceBounds surface_bounds;
+  BoundsTree surface_tree;
 };
 // What every band of a frame shares, computed once: a render in bands (streaming, bounded
 // memory) prepares the frame, then renders its rows band by band.

@@ -98,6 +98,7 @@ const std::vector<std::string>& scene_key_paths() {
       "render.footprint_filtering",
       "render.mastin_antialiasing",
       "render.renderer",
+      "render.surface_tolerance",
       "render.tone_key",
       "render.tone_white",
   };
@@ -632,6 +633,8 @@ void parse_rendering(const Section& top, Scene& scene) {
   parse_adaptive_sampling(render, im);
   im.footprint_filtering = render.boolean("footprint_filtering", false);
   im.renderer = choice(render, "renderer", kRenderers, "raster");
+  im.surface_tolerance = render.number("surface_tolerance", kDefaultSurfaceTolerance,
+                                       kMinSurfaceTolerance, kMaxSurfaceTolerance);
   im.mastin_antialiasing = render.number("mastin_antialiasing", 0.0, 1e-3, 1.0);
   if (im.mastin_antialiasing > 0.0 && im.pixel_tolerance > 0.0) {
     throw SceneError("render.mastin_antialiasing",
@@ -802,6 +805,13 @@ const std::vector<KeyUse>& key_uses() {
          // The rule also averages the Fresnel factor F̄ of the sea term.
          return s.shading.sky || s.shading.sea ? "" : "shading.sky and shading.sea are false";
        }},
+      {"render.surface_tolerance",
+       [](const Scene& s) -> std::string {
+         return s.image.renderer == Renderer::raytrace_surface
+                    ? ""
+                    : "render.renderer is not raytrace_surface (`render --renderer "
+                      "raytrace_surface` uses it)";
+       }},
   };
   return uses;
 }
@@ -929,6 +939,7 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) 
   job.max_refinements = scene.image.max_refinements;
   job.footprint_filtering = scene.image.footprint_filtering;
   job.renderer = scene.image.renderer;
+  job.surface_tolerance = scene.image.surface_tolerance;
   job.antialiasing_contrast = scene.image.mastin_antialiasing;
   job.threads = threads;
   return job;

@@ -54,8 +54,9 @@ struct ImageSettings {
   bool footprint_filtering = false;      // RenderJob::footprint_filtering
   double mastin_antialiasing = 0.0;      // RenderJob::antialiasing_contrast (0: off)
   Renderer renderer = Renderer::raster;  // RenderJob::renderer (`render --renderer` overrides)
-  double tone_key = 0.18;                // Reinhard key a for the PNG preview
-  double tone_white = 0.0;               // L_white for the preview; 0: the largest scaled luminance
+  double surface_tolerance = kDefaultSurfaceTolerance;  // RenderJob::surface_tolerance [pixels]
+  double tone_key = 0.18;                               // Reinhard key a for the PNG preview
+  double tone_white = 0.0;  // L_white for the preview; 0: the largest scaled luminance
 };
 
 // A key present in a scene file that does nothing for this scene (pbrt-v4's ReportUnused): e.g.

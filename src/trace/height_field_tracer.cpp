@@ -8,45 +8,6 @@
 namespace oceanref {
 
 namespace {
-constexpr double kEdgeSlack = 1e-12;
-
-// Möller & Trumbore 1997: t and the weights of (b, c) of the hit of a ray with triangle abc;
-// false if it misses or hits at t ≤ 0.
-bool intersect_triangle(const glm::dvec3& origin, const glm::dvec3& direction, const glm::dvec3& a,
-                        const glm::dvec3& b, const glm::dvec3& c, double& t, double& u, double& v) {
-  const glm::dvec3 e1 = b - a, e2 = c - a;
-  const glm::dvec3 p = glm::cross(direction, e2);
-  const double det = glm::dot(e1, p);
-  if (det == 0.0 || !std::isfinite(det)) return false;
-  const double inverse = 1.0 / det;
-  const glm::dvec3 s = origin - a;
-  u = glm::dot(s, p) * inverse;
-  if (u < -kEdgeSlack || u > 1.0 + kEdgeSlack) return false;
-  const glm::dvec3 q = glm::cross(s, e1);
-  v = glm::dot(direction, q) * inverse;
-  if (v < -kEdgeSlack || u + v > 1.0 + kEdgeSlack) return false;
-  t = glm::dot(e2, q) * inverse;
-  return t > 0.0;
-}
-
-// The slab test: the ray's parameter interval inside the box, [near, far] (near > far: misses).
-std::pair<double, double> box_interval(const glm::dvec3& origin, const glm::dvec3& inverse,
-                                       const glm::dvec3& lower, const glm::dvec3& upper) {
-  double near = 0.0, far = std::numeric_limits<double>::infinity();
-  for (int axis = 0; axis < 3; ++axis) {
-    double t0 = (lower[axis] - origin[axis]) * inverse[axis];
-    double t1 = (upper[axis] - origin[axis]) * inverse[axis];
-    if (std::isnan(t0) || std::isnan(t1)) {  // parallel to the slab, on its plane: inside
-      if (origin[axis] < lower[axis] || origin[axis] > upper[axis]) return {1.0, 0.0};
-      continue;
-    }
-    if (t0 > t1) std::swap(t0, t1);
-    near = std::max(near, t0);
-    far = std::min(far, t1);
-  }
-  return {near, far};
-}
-
 // Tests one triangle against the best hit so far.
 void test_triangle(const TraceGrid& grid, std::size_t index, const glm::dvec3& origin,
                    const glm::dvec3& direction, RayHit& best) {
@@ -61,13 +22,6 @@ void test_triangle(const TraceGrid& grid, std::size_t index, const glm::dvec3& o
   u = std::clamp(u, 0.0, 1.0);
   w = std::clamp(w, 0.0, 1.0 - u);
   best = {t, id, {1.0 - u - w, u, w}};
-}
-
-// Pads a node's box so that a hit on an edge's slack (trace_ray) lies inside it.
-void pad_box(BoundsTree::Node& node) {
-  const glm::dvec3 pad(1e-9 * (1.0 + std::max({glm::length(node.lower), glm::length(node.upper)})));
-  node.lower -= pad;
-  node.upper += pad;
 }
 
 int build(const TraceGrid& grid, BoundsTree& tree, int i0, int i1, int j0, int j1) {
@@ -178,41 +132,14 @@ BoundsTree build_bounds_tree(const TraceGrid& grid) {
 RayHit trace_ray(const TraceGrid& grid, const BoundsTree& tree, const glm::dvec3& origin,
                  const glm::dvec3& direction) {
   RayHit best;
-  if (tree.nodes.empty()) return best;
-  const glm::dvec3 inverse = 1.0 / direction;
-  // Depth-first, the nearer child first; a box entered beyond the best hit is skipped.
-  std::vector<std::pair<int, double>> stack{{0, 0.0}};
-  const auto enter = [&](int node) {
-    const BoundsTree::Node& n = tree.nodes[static_cast<std::size_t>(node)];
-    return box_interval(origin, inverse, n.lower, n.upper);
+  const auto limit = [&] {
+    return best.triangle >= 0 ? best.t : std::numeric_limits<double>::infinity();
   };
-  const auto [root_near, root_far] = enter(0);
-  if (root_near > root_far) return best;
-  stack.front().second = root_near;
-  while (!stack.empty()) {
-    const auto [index, near] = stack.back();
-    stack.pop_back();
-    if (best.triangle >= 0 && near > best.t) continue;
-    const BoundsTree::Node& n = tree.nodes[static_cast<std::size_t>(index)];
-    if (n.children[0] < 0) {
-      for (int t = n.first; t < n.first + n.count; ++t) {
-        test_triangle(grid, static_cast<std::size_t>(t), origin, direction, best);
-      }
-      continue;
+  visit_leaves_nearest_first(tree, origin, direction, limit, [&](const BoundsTree::Node& n) {
+    for (int t = n.first; t < n.first + n.count; ++t) {
+      test_triangle(grid, static_cast<std::size_t>(t), origin, direction, best);
     }
-    const auto [a, b] = n.children;
-    const auto [a_near, a_far] = enter(a);
-    const auto [b_near, b_far] = enter(b);
-    const bool a_hit = a_near <= a_far, b_hit = b_near <= b_far;
-    // Pushed farther first, so the nearer is popped next.
-    if (a_hit && b_hit && a_near <= b_near) {
-      stack.emplace_back(b, b_near);
-      stack.emplace_back(a, a_near);
-    } else {
-      if (a_hit) stack.emplace_back(a, a_near);
-      if (b_hit) stack.emplace_back(b, b_near);
-    }
-  }
+  });
   return best;
 }
 

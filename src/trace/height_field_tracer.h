@@ -15,6 +15,8 @@
 
 #include <glm/glm.hpp>
 
+#include "trace/bounds_tree.h"
+
 namespace oceanref {
 
 // What a ray hits first: the triangle (index in grid_triangles order) at ray parameter t, with
@@ -35,19 +37,8 @@ struct TraceGrid {
   const std::vector<bool>* skipped = nullptr;                            // per triangle
 };
 
-// A tree of bounding boxes: over the grid's cells (the quadtree), or over the triangles of any
-// mesh (objects).
-struct BoundsTree {
-  struct Node {
-    glm::dvec3 lower{0.0}, upper{0.0};    // bounding box of the block's vertices
-    std::array<int, 2> children{-1, -1};  // −1: a leaf
-    // A leaf's triangles [first, first + count): a grid cell's two (2c, 2c + 1 for the cell
-    // c = j·(columns − 1) + i), or one triangle of a mesh.
-    int first = -1, count = 0;
-  };
-  std::vector<Node> nodes;  // nodes[0] is the root
-};
-
+// The quadtree over the grid's cells: per block of cells the box of its vertices, split along the
+// longer side down to single cells.
 BoundsTree build_bounds_tree(const TraceGrid& grid);
 // The bounds of any triangles (`grid.columns`, `rows` unused): split at the median centroid along
 // the longest axis of the centroids' box, down to one triangle per leaf.

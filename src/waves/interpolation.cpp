@@ -31,7 +31,12 @@ GridPoint locate(int cells, double size, double x, double z) {
           u - std::floor(u), v - std::floor(v)};
 }
 
+// i mod n in [0, n): without a division for the stencils' −1 … N + 1 (the hot path of every
+// interpolated read).
 int wrap_index(int i, int n) {
+  if (i >= 0 && i < n) return i;
+  if (i < 0 && i >= -n) return i + n;
+  if (i >= n && i - n < n) return i - n;
   return (i % n + n) % n;
 }
 

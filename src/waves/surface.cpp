@@ -1,5 +1,8 @@
 #include "waves/surface.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/check.h"
 #include "waves/ocean.h"
 
@@ -80,6 +83,108 @@ DisplacedPoint displaced_point(const Ocean& ocean, const std::vector<CascadeFiel
     dz += u * read_value(f.values[index(Field::displacement_z)], stencil);
   }
   return {x0 + dx, height, z0 + dz};
+}
+
+DisplacedPointDerivatives displaced_point_derivatives(const Ocean& ocean,
+                                                      const std::vector<CascadeFields>& fields,
+                                                      const std::vector<EvolvedCascade>& evolved,
+                                                      double x0, double z0, Interpolation mode) {
+  const PointFields p = combine_surface_at(ocean, fields, evolved, x0, z0, mode);
+  const auto raw = [&](Field q) { return p.raw[static_cast<std::size_t>(q)]; };
+  DisplacedPointDerivatives d;
+  d.point = {x0 + raw(Field::displacement_x), p.height, z0 + raw(Field::displacement_z)};
+  d.d_dx0 = {1.0 + raw(Field::ddx_dx), raw(Field::slope_x), p.ddz_dx};
+  d.d_dz0 = {raw(Field::ddx_dz), raw(Field::slope_z), 1.0 + raw(Field::ddz_dz)};
+  return d;
+}
+
+namespace {
+// Bounds of one field over the plane: |∂f/∂x| ≤ d_dx, |∂f/∂z| ≤ d_dz, |f| ≤ value.
+struct FieldBounds {
+  double d_dx = 0.0, d_dz = 0.0, value = 0.0;
+};
+
+// Catmull–Rom: max over t of Σ_j|w_j(t)| = 1 + t(1 − t) ≤ 5/4, and of Σ_j|c_j(t)| ≤ 3/2
+// (FORMULAS.md, "Bounds of the interpolated surface").
+constexpr double kCatmullRomValueSum = 1.25;
+constexpr double kCatmullRomDifferenceSum = 1.5;
+
+// From the N×N grid of a field read by bilinear or bicubic interpolation.
+FieldBounds grid_field_bounds(const std::vector<double>& f, int n, double size,
+                              Interpolation mode) {
+  double dx = 0.0, dz = 0.0, value = 0.0;
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      const double v = f[grid_offset(a, b, n)];
+      value = std::max(value, std::fabs(v));
+      dx = std::max(dx, std::fabs(f[grid_offset((a + 1) % n, b, n)] - v));
+      dz = std::max(dz, std::fabs(f[grid_offset(a, (b + 1) % n, n)] - v));
+    }
+  }
+  const double per_spacing = n / size;
+  if (mode == Interpolation::bicubic) {
+    const double k = kCatmullRomDifferenceSum * kCatmullRomValueSum * per_spacing;
+    return {k * dx, k * dz, kCatmullRomValueSum * kCatmullRomValueSum * value};
+  }
+  return {per_spacing * dx, per_spacing * dz, value};
+}
+
+// From the summed components of one pattern (direct summation), for η (axis −1) or D along the
+// axis 0 (x) or 1 (z).
+FieldBounds summed_field_bounds(const PatternSpectrum& s, const std::vector<Complex>& h, int axis) {
+  const int n = s.pattern.resolution;
+  const double dk = wavenumber_spacing(s.pattern.size);
+  FieldBounds bounds;
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      const std::size_t k = grid_offset(a, b, n);
+      const int alpha = wave_index(a, n), beta = wave_index(b, n);
+      const Complex g =
+          axis < 0 ? Complex(1.0)
+                   : displacement_factor(axis == 0 ? alpha : beta, dk, s.inverse_wavenumber[k], n);
+      const double amplitude = abs(g * h[k]);
+      bounds.value += amplitude;
+      bounds.d_dx += amplitude * std::fabs(alpha * dk);
+      bounds.d_dz += amplitude * std::fabs(beta * dk);
+    }
+  }
+  return bounds;
+}
+}  // namespace
+
+DisplacedSurfaceBounds displaced_surface_bounds(const Ocean& ocean,
+                                                const std::vector<CascadeFields>& fields,
+                                                const std::vector<EvolvedCascade>& evolved,
+                                                Interpolation mode) {
+  OCEANREF_EXPECTS(
+      (mode == Interpolation::direct ? evolved.size() : fields.size()) == ocean.cascades.size(),
+      "one field set (or evolved spectrum, for direct) per cascade");
+  // Sums over cascades of the bounds of D_x, η, D_z (D scaled by |u|).
+  std::array<FieldBounds, 3> sum{};
+  for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
+    const double u = std::fabs(ocean.cascades[i].choppiness);
+    static constexpr std::array<Field, 3> kComponents{Field::displacement_x, Field::height,
+                                                      Field::displacement_z};
+    static constexpr std::array<int, 3> kAxes{0, -1, 1};  // summed_field_bounds' axis
+    for (std::size_t c = 0; c < 3; ++c) {
+      const FieldBounds f =
+          mode == Interpolation::direct
+              ? summed_field_bounds(ocean.cascades[i].low, evolved[i].low, kAxes[c])
+              : grid_field_bounds(fields[i].values[static_cast<std::size_t>(kComponents[c])],
+                                  fields[i].low_resolution, fields[i].size, mode);
+      const double scale = c == 1 ? 1.0 : u;
+      sum[c].d_dx += scale * f.d_dx;
+      sum[c].d_dz += scale * f.d_dz;
+      sum[c].value += scale * f.value;
+    }
+  }
+  DisplacedSurfaceBounds out;
+  // sqrt is correctly rounded everywhere (hypot is not): the same bits on every platform.
+  for (std::size_t c = 0; c < 3; ++c) {
+    out.lipschitz[c] = std::sqrt(sum[c].d_dx * sum[c].d_dx + sum[c].d_dz * sum[c].d_dz);
+  }
+  out.offset = {sum[0].value, sum[1].value, sum[2].value};
+  return out;
 }
 
 }  // namespace oceanref

@@ -63,4 +63,38 @@ DisplacedPoint displaced_point(const Ocean& ocean, const std::vector<CascadeFiel
                                const std::vector<EvolvedCascade>& evolved, double x0, double z0,
                                Interpolation mode, ShadingNormals normals);
 
+// p(x0) with its partial derivatives ∂p/∂x0 and ∂p/∂z0 (the columns of the Jacobian of eq. 4.20:
+// (1 + u∂D_x/∂x, ∂η/∂x, u∂D_z/∂x) and (u∂D_x/∂z, ∂η/∂z, 1 + u∂D_z/∂z)), from combine_surface_at:
+// what Newton's method on a ray's hit with the continuous surface needs.
+struct DisplacedPointDerivatives {
+  DisplacedPoint point;
+  std::array<double, 3> d_dx0{}, d_dz0{};  // (x, y, z) components
+};
+DisplacedPointDerivatives displaced_point_derivatives(const Ocean& ocean,
+                                                      const std::vector<CascadeFields>& fields,
+                                                      const std::vector<EvolvedCascade>& evolved,
+                                                      double x0, double z0, Interpolation mode);
+
+// Bounds of the displaced surface p(x0) over the whole plane, proven from the fields (not
+// sampled), for the ray tracer against the continuous surface (trace/surface_tracer.h). They
+// bound the offset q(x0) = p(x0) − (x0, 0, z0) = (Σu_iD_x,i, Σ η_i, Σu_iD_z,i):
+//   |q_j(a) − q_j(b)| ≤ lipschitz[j]·|a − b|   and   |q_j(x0)| ≤ offset[j].
+// Per cascade and field f, a bound B_x of |∂f/∂x| and B_z of |∂f/∂z| and M of |f|:
+//   bilinear: B_x = max|f[m+1, n] − f[m, n]|/Δ (the interpolant's slope in a cell is a mean of
+//     two such differences), M = max|f[m, n]|;
+//   bicubic (Catmull–Rom): B_x = (3/2)(5/4)·max|f[m+1, n] − f[m, n]|/Δ, M = (5/4)²·max|f| —
+//     5/4 = max Σ_j|w_j(t)| and 3/2 = max Σ_j|c_j(t)|, where the derivative Σ_j w'_j f_j is
+//     written Σ_j c_j (f_{j+1} − f_j) (src/FORMULAS.md, "Bounds of the interpolated surface");
+//   direct: B_x = Σ_k |g h(k, t)|·|k_x|, M = Σ_k |g h(k, t)| over the low band (g the field's
+//     multiplier: 1 for η, d(k_x, k) for D_x, eq. 4.18).
+// Then lipschitz_j = |(Σ|u|B_x, Σ|u|B_z)| of its field (u = 1 for η), offset_j = Σ|u|M.
+struct DisplacedSurfaceBounds {
+  std::array<double, 3> lipschitz{};  // of q's components x, y, z [m/m]
+  std::array<double, 3> offset{};     // of |q|'s components [m]
+};
+DisplacedSurfaceBounds displaced_surface_bounds(const Ocean& ocean,
+                                                const std::vector<CascadeFields>& fields,
+                                                const std::vector<EvolvedCascade>& evolved,
+                                                Interpolation mode);
+
 }  // namespace oceanref
