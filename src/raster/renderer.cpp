@@ -128,14 +128,14 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
       }
       return false;
     };
-    g.untraced.resize(g.sea_triangles);
-    for (std::size_t t = 0; t < g.sea_triangles; ++t) g.untraced[t] = behind(g.triangles[t]);
+    if (job.renderer == Renderer::raytrace) {  // the sea's triangles (else its surface, below)
+      g.untraced.resize(g.sea_triangles);
+      for (std::size_t t = 0; t < g.sea_triangles; ++t) g.untraced[t] = behind(g.triangles[t]);
+      if (g.grid.visible) g.bounds = build_bounds_tree(trace_view(g));
+    }
     g.object_untraced.resize(g.object_triangles.size());
     for (std::size_t t = 0; t < g.object_triangles.size(); ++t) {
       g.object_untraced[t] = behind(g.object_triangles[t]);
-    }
-    if (g.grid.visible && job.renderer == Renderer::raytrace) {
-      g.bounds = build_bounds_tree(trace_view(g));
     }
     g.object_bounds = build_triangle_tree(object_view(g));
   }
