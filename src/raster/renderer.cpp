@@ -162,11 +162,21 @@ Geometry build_geometry(const RenderJob& job, const FrameFields& fields, double 
   return g;
 }
 
-// The continuous surface of the frame (Renderer::raytrace_surface) for the surface tracer: the
-// geometry's corners, bounds and the unfiltered p(x0) of waves/surface.h.
-TracedSurface traced_surface(const RenderFrame& frame) {
+// The continuous surface of the frame (Renderer::raytrace_surface) for the surface tracer — the
+// geometry's corners, bounds and the unfiltered p(x0) of waves/surface.h — and the tracer's
+// settings from the camera and render.surface_tolerance: once per pass, not per ray.
+struct SurfaceTrace {
+  TracedSurface surface;
+  SurfaceTraceSettings settings;
+};
+SurfaceTrace surface_trace(const RenderFrame& frame) {
   const RenderJob& job = frame.job;
-  TracedSurface s = surface_view(frame.geometry);
+  SurfaceTrace trace{surface_view(frame.geometry), {}};
+  trace.settings.angular_tolerance =
+      job.surface_tolerance * job.camera.vertical_fov / job.camera.height;
+  trace.settings.forward = job.camera.forward;
+  trace.settings.near = job.grid.near;
+  TracedSurface& s = trace.surface;
   s.point = [&frame, &job](const glm::dvec2& x0) {
     const DisplacedPoint p =
         displaced_point(*job.ocean, frame.fields.grids, frame.fields.evolved, x0.x, x0.y,
@@ -181,7 +191,7 @@ TracedSurface traced_surface(const RenderFrame& frame) {
                         glm::dvec3(d.d_dx0[0], d.d_dx0[1], d.d_dx0[2]),
                         glm::dvec3(d.d_dz0[0], d.d_dz0[1], d.d_dz0[2])};
   };
-  return s;
+  return trace;
 }
 
 // A hit on the continuous surface as a fragment of the grid's triangles: the triangle of the
@@ -211,17 +221,13 @@ RayHit surface_fragment_hit(const Geometry& g, const SurfaceHit& hit) {
 
 // The nearest hit of a ray from the camera: the sea's or an object's (objects numbered from
 // sea_triangles on); equal distances to the sea, as the rasterizer's depth ties.
-RayHit trace_scene(const RenderFrame& frame, const TracedSurface* surface, const glm::dvec3& origin,
+RayHit trace_scene(const RenderFrame& frame, const SurfaceTrace* surface, const glm::dvec3& origin,
                    const glm::dvec3& direction) {
   const Geometry& g = frame.geometry;
   RayHit sea;
   if (surface != nullptr) {
-    SurfaceTraceSettings settings;
-    const Camera& camera = frame.job.camera;
-    settings.angular_tolerance = frame.job.surface_tolerance * camera.vertical_fov / camera.height;
-    settings.forward = camera.forward;
-    settings.near = frame.job.grid.near;
-    const SurfaceHit hit = trace_surface(*surface, g.surface_tree, settings, origin, direction);
+    const SurfaceHit hit =
+        trace_surface(surface->surface, g.surface_tree, surface->settings, origin, direction);
     if (hit.hit) sea = surface_fragment_hit(g, hit);
   } else {
     sea = trace_ray(trace_view(g), g.bounds, origin, direction);
@@ -243,9 +249,9 @@ void trace_fragments(const RenderFrame& frame, const SampleGrid& grid, int first
                      int threads) {
   const RenderJob& job = frame.job;
   if (frame.geometry.triangles.empty()) return;
-  const std::optional<TracedSurface> surface = job.renderer == Renderer::raytrace_surface
-                                                   ? std::optional(traced_surface(frame))
-                                                   : std::nullopt;
+  const std::optional<SurfaceTrace> surface = job.renderer == Renderer::raytrace_surface
+                                                  ? std::optional(surface_trace(frame))
+                                                  : std::nullopt;
   const int count = window.count < 0 ? grid.columns() - window.first : window.count;
   parallel_for(last_row - first_row, threads, [&](int r) {
     const int row = first_row + r;

@@ -101,8 +101,7 @@ int build(const TracedSurface& s, BoundsTree& tree, int i0, int i1, int j0, int 
 // The patch's two halves, split across its longer side in x0 (so a long thin patch, as the
 // projected grid's cells near the horizon are, is split along its length), p evaluated at the
 // two new corners.
-std::array<Patch, 2> halves(const TracedSurface& s, const CellCorners& c, const Patch& q,
-                            long& evaluations) {
+std::array<Patch, 2> halves(const TracedSurface& s, const CellCorners& c, const Patch& q) {
   const double along_s = std::max(glm::length(q.x0[1] - q.x0[0]), glm::length(q.x0[3] - q.x0[2]));
   const double along_t = std::max(glm::length(q.x0[2] - q.x0[0]), glm::length(q.x0[3] - q.x0[1]));
   std::array<Patch, 2> out{q, q};
@@ -126,7 +125,6 @@ std::array<Patch, 2> halves(const TracedSurface& s, const CellCorners& c, const 
     out[0].height = out[1].height = h;
     out[1].t0 = q.t0 + h;
   }
-  evaluations += 2;
   return out;
 }
 
@@ -145,13 +143,12 @@ struct CellHit {
 // the root if it converges (steps ≤ 1e-12 in s, t and 1e-12·max(1, λ) in λ) inside the cell and
 // near the patch (within one patch size), else the start.
 CellHit refine(const TracedSurface& s, const CellCorners& c, const Patch& q, const CellHit& start,
-               const glm::dvec3& origin, const glm::dvec3& direction, long& evaluations) {
+               const glm::dvec3& origin, const glm::dvec3& direction) {
   constexpr int kIterations = 16;
   constexpr double kStep = 1e-12;
   CellHit x = start;
   for (int n = 0; n < kIterations; ++n) {
     const SurfacePoint p = s.point_derivatives(cell_point(c, x.s, x.t));
-    ++evaluations;
     const glm::dvec2 x0_s = (1.0 - x.t) * (c.base[1] - c.base[0]) + x.t * (c.base[3] - c.base[2]);
     const glm::dvec2 x0_t = (1.0 - x.s) * (c.base[2] - c.base[0]) + x.s * (c.base[3] - c.base[1]);
     const glm::dvec3 j_s = x0_s.x * p.d_dx0 + x0_s.y * p.d_dz0;
@@ -187,7 +184,7 @@ CellHit refine(const TracedSurface& s, const CellCorners& c, const Patch& q, con
 // The ray against a small patch's two triangles (p00, p10, p01) and (p10, p11, p01): the nearer
 // hit's parameters, refined by Newton's method; λ < 0 if both miss.
 CellHit hit_small_patch(const TracedSurface& s, const CellCorners& c, const Patch& q,
-                        const glm::dvec3& origin, const glm::dvec3& direction, long& evaluations) {
+                        const glm::dvec3& origin, const glm::dvec3& direction) {
   CellHit best{0.0, 0.0, -1.0, false};
   double t = 0.0, u = 0.0, v = 0.0;
   if (intersect_triangle(origin, direction, q.p[0], q.p[1], q.p[2], t, u, v)) {
@@ -202,7 +199,7 @@ CellHit hit_small_patch(const TracedSurface& s, const CellCorners& c, const Patc
     best = {q.s0 + (1.0 - v) * q.width, q.t0 + (u + v) * q.height, t, false};
   }
   if (best.lambda < 0.0) return best;
-  return refine(s, c, q, best, origin, direction, evaluations);
+  return refine(s, c, q, best, origin, direction);
 }
 
 // The refinement of one cell (surface_tracer.h, 2.): updates `best` with the cell's nearest hit in
@@ -240,13 +237,13 @@ void trace_cell(const TracedSurface& s, const SurfaceTraceSettings& settings, st
     if (best.hit && e.near > best.t) continue;
     if (e.size <= std::max(settings.angular_tolerance * e.near, settings.absolute_tolerance) ||
         e.depth >= kMaximumDepth) {
-      const CellHit h = hit_small_patch(s, c, e.patch, origin, direction, best.evaluations);
+      const CellHit h = hit_small_patch(s, c, e.patch, origin, direction);
       if (!(h.lambda > 0.0) || (best.hit && !(h.lambda < best.t))) continue;
       if (!(glm::dot(h.lambda * direction, settings.forward) > settings.near)) continue;
-      best = {true, h.lambda, cell_point(c, h.s, h.t), cell, h.refined, best.evaluations};
+      best = {true, h.lambda, cell_point(c, h.s, h.t), cell, h.refined};
       continue;
     }
-    const std::array<Patch, 2> children = halves(s, c, e.patch, best.evaluations);
+    const std::array<Patch, 2> children = halves(s, c, e.patch);
     const auto [a, a_enters] = entry(children[0], e.depth + 1);
     const auto [b, b_enters] = entry(children[1], e.depth + 1);
     // Pushed farther first, so the nearer is taken next (of equals, the first half).

@@ -69,7 +69,6 @@ struct SurfaceHit {
   glm::dvec2 x0{0.0};      // where on the base plane the hit point comes from
   std::int64_t cell = -1;  // j·(columns − 1) + i
   bool refined = false;    // Newton's method converged (else the small patch's triangle hit)
-  long evaluations = 0;    // of p (with or without its derivatives): the ray's cost
 };
 
 // The leaves are the cells (first = the cell's index, count = 1).
