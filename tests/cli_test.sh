@@ -671,6 +671,47 @@ expect 2 'tile0.piece: rendered from another scene' merge "$source_dir/reference
 expect 2 'default_small.json: not an oceanref render piece' merge "$scene" "$scene" -o "$tmp/x.exr"
 [ -e "$tmp/x.exr" ] && fail "a refused merge wrote its output"
 
+# --- acf: the autocorrelation of the displacement (Lutz eq. 22) ---------------------------------
+cat >"$tmp/acf_periodic.json" <<'JSON'
+{"waves": {"spectrum": {"model": "jonswap", "wind_speed": 5, "fetch": 20000},
+           "cascades": {"sizes": [40]}, "resolution": 16, "choppiness": -1}}
+JSON
+python3 -c "
+import json, sys
+s = json.load(open(sys.argv[1])); s['waves']['synthesis'] = 'tiling_and_blending'
+json.dump(s, open(sys.argv[2], 'w'))" "$tmp/acf_periodic.json" "$tmp/acf_tiled.json"
+expect 0 '^scene,tau_m,tau_periods,acf,acf_disp_x,acf_height,acf_disp_z$' acf \
+  "$tmp/acf_periodic.json" "$tmp/acf_tiled.json" --lines 200 --length 2 --samples-per-period 4
+checks=$((checks + 1))
+[ "$(wc -l <"$tmp/out")" -eq 19 ] || fail "acf: expected a header and 2 x 9 lags"
+# The periodic ocean is 1 at one and two periods, tiling and blending is not; every lag 0 is 1.
+awk -F, 'NR > 1 && $3 == 0 && $4 != 1 { exit 1 }
+         NR > 1 && $1 == "acf_periodic" && ($3 == 1 || $3 == 2) && ($4 < 0.999999999 || $4 > 1.000000001) { exit 1 }
+         NR > 1 && $1 == "acf_tiled" && $3 == 2 && $4 > 0.5 { exit 1 }' "$tmp/out" ||
+  fail "acf: the values at lags 0, 1 and 2 periods are wrong: $(cat "$tmp/out")"
+cp "$tmp/out" "$tmp/acf_stdout.csv"
+expect 0 '' acf "$tmp/acf_periodic.json" "$tmp/acf_tiled.json" --lines 200 --length 2 \
+  --samples-per-period 4 --threads 1 -o "$tmp/acf.csv" --svg "$tmp/acf.svg" --map "$tmp/acf.png" \
+  --map-pixels 32
+checks=$((checks + 1))
+cmp -s "$tmp/acf.csv" "$tmp/acf_stdout.csv" || fail "acf: -o with 1 thread differs from stdout with all"
+checks=$((checks + 1))
+[ "$(grep -c '<polyline' "$tmp/acf.svg")" -eq 2 ] || fail "acf --svg: expected one line per scene"
+checks=$((checks + 1))
+[ "$(python3 -c "import struct, sys; d = open(sys.argv[1], 'rb').read(24); print(*struct.unpack('>II', d[16:24]))" "$tmp/acf.png")" = "72 32" ] ||
+  fail "acf --map: expected two 32-pixel maps 8 pixels apart (72 x 32)"
+expect 2 '--length: must be in \[0.03125, 1024\]' acf "$tmp/acf_periodic.json" --length 0 -o "$tmp/acf_bad.csv"
+checks=$((checks + 1))
+[ -e "$tmp/acf_bad.csv" ] && fail "acf --length 0 wrote a file"
+expect 2 '--lines' acf "$tmp/acf_periodic.json" --lines 1
+expect 2 '--length: times --samples-per-period must be at most 1e6' acf "$tmp/acf_periodic.json" --length 1000 --samples-per-period 4096
+sed 's/"choppiness": -1}/"choppiness": -1, "synthesis": "tiled"}/' "$tmp/acf_periodic.json" >"$tmp/acf_bad.json"
+expect 2 "waves.synthesis: expected periodic or tiling_and_blending; got 'tiled'" acf "$tmp/acf_bad.json"
+sed 's/"choppiness": -1}/"choppiness": -1, "synthesis": "tiling_and_blending", "tiling": {"tile_size": 20}}/' "$tmp/acf_periodic.json" >"$tmp/acf_bad.json"
+expect 2 'waves.tiling.tile_size: .*\[0.25, 16\]' acf "$tmp/acf_bad.json"
+sed 's/"choppiness": -1}/"choppiness": -1, "synthesis": "tiling_and_blending", "tiling": {"flow": "circular", "flow_center": [1, 2, 3]}}/' "$tmp/acf_periodic.json" >"$tmp/acf_bad.json"
+expect 2 'waves.tiling.flow_center: expected \[x, z\]' acf "$tmp/acf_bad.json"
+
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)
 "$bin" "${args[@]}" >"$tmp/a" && "$bin" "${args[@]}" >"$tmp/b"

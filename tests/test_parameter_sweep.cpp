@@ -165,6 +165,11 @@ void enable_key(json& scene, const std::string& path) {
     scene["shading"] = {{"accuracy", "reference"}};
   }
   if (path == "render.max_samples_per_pixel") scene["render"]["pixel_tolerance"] = 0.5;
+  if (path.rfind("waves.tiling.", 0) == 0) {
+    waves["synthesis"] = "tiling_and_blending";
+    if (path == "waves.tiling.flow_direction_deg") waves["tiling"]["flow"] = "uniform";
+    if (path == "waves.tiling.flow_center") waves["tiling"]["flow"] = "circular";
+  }
 }
 
 void set_value(json& scene, const Range& r, double v) {
@@ -176,10 +181,11 @@ void set_value(json& scene, const Range& r, double v) {
     if (!node.is_array()) {
       // Start from the documented default, so only this element differs.
       node = json::array();
-      const json defaults = r.path == "camera.position"  ? json{0, 4, 0}
-                            : r.path == "camera.look_at" ? json{0, 0, 200}
-                            : r.path == "camera.up"      ? json{0, 1, 0}
-                                                         : json{0.5, 0.5, 0.5};
+      const json defaults = r.path == "camera.position"            ? json{0, 4, 0}
+                            : r.path == "camera.look_at"           ? json{0, 0, 200}
+                            : r.path == "camera.up"                ? json{0, 1, 0}
+                            : r.path == "waves.tiling.flow_center" ? json{0, 0}
+                                                                   : json{0.5, 0.5, 0.5};
       node = defaults;
     }
     node[static_cast<std::size_t>(r.index)] = value;

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/acf_command.h"
 #include "cli/bench_command.h"
 #include "cli/brdf_command.h"
 #include "cli/compare_command.h"
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
   const auto run_compare = oceanref::cli::add_compare_command(app);
   const auto run_golden = oceanref::cli::add_golden_command(app);
   const auto run_bench = oceanref::cli::add_bench_command(app);
+  const auto run_acf = oceanref::cli::add_acf_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -70,6 +72,7 @@ int main(int argc, char** argv) {
       if (app.got_subcommand("probe")) run_probe(out);
       if (app.got_subcommand("compare")) run_compare(out);
       if (app.got_subcommand("golden")) run_golden(out);
+      if (app.got_subcommand("acf")) run_acf(out);
     } catch (const oceanref::cli::CheckFailed&) {
       std::cout << out.str() << std::flush;
       return 1;

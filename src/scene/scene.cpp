@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -60,6 +61,11 @@ const std::vector<std::string>& scene_key_paths() {
       "waves.foam.time_step",
       "waves.foam.steps",
       "waves.realization",
+      "waves.synthesis",
+      "waves.tiling.tile_size",
+      "waves.tiling.flow",
+      "waves.tiling.flow_direction_deg",
+      "waves.tiling.flow_center",
       "waves.mastin.filter",
       "waves.mastin.fractal_dimension",
       "waves.mastin.animation",
@@ -471,19 +477,46 @@ std::vector<double> parse_choppiness(const Section& waves, std::size_t count, bo
   return u;
 }
 
-glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, double limit) {
-  if (!s.has(key)) return fallback;
+// A fixed-length array of numbers, each in [−limit, limit]; `form` names its elements ("x, y, z").
+template <std::size_t N>
+std::array<double, N> number_array(const Section& s, const char* key, const char* form,
+                                   double limit) {
   const json& v = s.at(key);
-  if (!v.is_array() || v.size() != 3) {
-    throw SceneError(s.where(key), "expected [x, y, z], each in [-" + shortest_number(limit) +
-                                       ", " + shortest_number(limit) + "], got " + describe(v));
+  if (!v.is_array() || v.size() != N) {
+    throw SceneError(s.where(key), std::string("expected [") + form + "], each in [-" +
+                                       shortest_number(limit) + ", " + shortest_number(limit) +
+                                       "], got " + describe(v));
   }
-  glm::dvec3 out;
-  for (std::size_t i = 0; i < 3; ++i) {
+  std::array<double, N> out{};
+  for (std::size_t i = 0; i < N; ++i) {
     const std::string p = s.where(key) + "[" + std::to_string(i) + "]";
-    out[static_cast<glm::length_t>(i)] = checked_number(v[i], p, -limit, limit, "");
+    out[i] = checked_number(v[i], p, -limit, limit, "");
   }
   return out;
+}
+
+glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, double limit) {
+  if (!s.has(key)) return fallback;
+  const std::array<double, 3> v = number_array<3>(s, key, "x, y, z", limit);
+  return {v[0], v[1], v[2]};
+}
+
+// waves.synthesis and the waves.tiling section (waves/tiling.h).
+void parse_synthesis(const Section& waves, WaveSettings& w) {
+  w.synthesis = choice(waves, "synthesis", kSyntheses, "periodic");
+  if (!waves.has("tiling")) return;
+  const Section tiling(waves.at("tiling"), "waves.tiling");
+  TilingSettings& t = w.tiling;
+  // Lutz §7 studies 1/2 to 4 exemplar periods; below 1/4 the tiles change faster than the waves.
+  t.tile_size = tiling.number("tile_size", t.tile_size, 0.25, 16.0, " exemplar periods");
+  t.flow.kind = choice(tiling, "flow", kFlowKinds, "none");
+  t.flow.direction = tiling.number("flow_direction_deg", 0.0, -720.0, 720.0, " degrees") *
+                     std::numbers::pi / 180.0;
+  if (tiling.has("flow_center")) {
+    const std::array<double, 2> c = number_array<2>(tiling, "flow_center", "x, z", 1e6);
+    t.flow.center_x = c[0];
+    t.flow.center_z = c[1];
+  }
 }
 
 // The objects array: each element an OBJ file and its placement and material.
@@ -690,6 +723,11 @@ std::string foam_sequence_inert(const Scene& s) {
   return s.foam.steps == 0 ? "waves.foam.steps is 0 (the instantaneous foam indicator)" : "";
 }
 
+std::string tiling_inert(const Scene& s) {
+  return s.waves.synthesis == Synthesis::tiling_and_blending
+             ? ""
+             : "waves.synthesis is not tiling_and_blending";
+}
 std::string mastin_inert(const Scene& s) {
   return s.waves.realization == Realization::mastin ? "" : "waves.realization is not mastin";
 }
@@ -785,6 +823,22 @@ const std::vector<KeyUse>& key_uses() {
        }},
       {"waves.mastin.dominant_phase_rate", mastin_shift_inert},
       {"waves.mastin.background_phase_rate", mastin_shift_inert},
+      {"waves.tiling.tile_size", tiling_inert},
+      {"waves.tiling.flow", tiling_inert},
+      {"waves.tiling.flow_direction_deg",
+       [](const Scene& s) -> std::string {
+         if (const std::string r = tiling_inert(s); !r.empty()) return r;
+         return s.waves.tiling.flow.kind == FlowKind::uniform ? ""
+                                                              : "waves.tiling.flow is not uniform";
+       }},
+      {"waves.tiling.flow_center",
+       [](const Scene& s) -> std::string {
+         if (const std::string r = tiling_inert(s); !r.empty()) return r;
+         const FlowKind k = s.waves.tiling.flow.kind;
+         return k == FlowKind::circular || k == FlowKind::converging
+                    ? ""
+                    : "waves.tiling.flow is neither circular nor converging";
+       }},
       {"waves.foam.steps", foam_inert},
       {"waves.foam.decay", foam_sequence_inert},
       {"waves.foam.time_step", foam_sequence_inert},
@@ -900,6 +954,7 @@ Scene parse_scene(const json& document) {
       }
     }
   }
+  parse_synthesis(waves, w);
   w.minimum_wavelength = waves.number(
       "minimum_wavelength", default_minimum_wavelength(w.spectrum.model), 0.0, 100.0, " m");
   if (waves.has("foam")) {

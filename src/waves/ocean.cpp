@@ -26,9 +26,17 @@ double wave_grid_bytes(const WaveSettings& settings) {
   return static_cast<double>(settings.sizes.size()) * (high + low) * per_cell;
 }
 
+Tiling resolve_tiling(const WaveSettings& settings) {
+  double period = 0.0;
+  for (const double size : settings.sizes) period = std::fmax(period, size);
+  return {0.5 * settings.tiling.tile_size * period, period, settings.seed,
+          settings.spectrum.wind_direction, settings.tiling.flow};
+}
+
 Ocean realize_ocean(const WaveSettings& settings, int threads) {
   const ReferenceFpEnvironment fp;
-  Ocean ocean{make_spectrum(settings.spectrum), {}, {}};
+  Ocean ocean{make_spectrum(settings.spectrum), {}, {}, settings.synthesis, {}};
+  if (settings.synthesis == Synthesis::tiling_and_blending) ocean.tiling = resolve_tiling(settings);
   if (settings.realization == Realization::mastin) {
     ocean.filter = make_mastin_filter(ocean.spectrum, settings.mastin);
   }
@@ -88,17 +96,46 @@ std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, doubl
   return raw;
 }
 
+namespace {
+void expect_evolved(const Ocean& ocean, const std::vector<EvolvedCascade>& evolved) {
+  OCEANREF_EXPECTS(
+      evolved.size() == ocean.cascades.size(),
+      "one evolved spectrum per cascade (evolve_ocean): " + std::to_string(evolved.size()) +
+          " for " + std::to_string(ocean.cascades.size()));
+}
+
+// The exemplar's raw sums over the cascades at (x, z), before finish_combination.
+PointFields exemplar_sum(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                         const std::vector<EvolvedCascade>& evolved, double x, double z,
+                         Interpolation mode) {
+  PointFields sum;
+  for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
+    const CascadeSpectra& c = ocean.cascades[i];
+    add_cascade(sum,
+                mode == Interpolation::direct ? direct_sum(c.low, c.high, evolved[i], x, z)
+                                              : cascade_from_grids(fields[i], x, z, mode),
+                c.choppiness);
+  }
+  return sum;
+}
+}  // namespace
+
 PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                        const std::vector<EvolvedCascade>& evolved, double x, double z,
                        Interpolation mode) {
-  if (mode == Interpolation::direct) return combine_direct(ocean, evolved, x, z);
-  OCEANREF_EXPECTS(fields.size() == ocean.cascades.size(),
-                   "one field set per cascade: " + std::to_string(fields.size()) + " for " +
-                       std::to_string(ocean.cascades.size()));
-  PointFields sum;
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    add_cascade(sum, cascade_from_grids(fields[i], x, z, mode), ocean.cascades[i].choppiness);
+  if (mode == Interpolation::direct) {
+    expect_evolved(ocean, evolved);
+  } else {
+    OCEANREF_EXPECTS(fields.size() == ocean.cascades.size(),
+                     "one field set per cascade: " + std::to_string(fields.size()) + " for " +
+                         std::to_string(ocean.cascades.size()));
   }
+  const auto exemplar = [&](double ex, double ez) {
+    return exemplar_sum(ocean, fields, evolved, ex, ez, mode);
+  };
+  PointFields sum = ocean.synthesis == Synthesis::tiling_and_blending
+                        ? blended_sum(ocean.tiling, x, z, exemplar)
+                        : exemplar(x, z);
   finish_combination(sum);
   return sum;
 }
@@ -108,7 +145,7 @@ double height_bound(const Ocean& ocean) {
   for (const CascadeSpectra& c : ocean.cascades) {
     for (const Complex& h : c.low.h0) bound += abs(h);  // η and D live on the low grid
   }
-  return bound;
+  return ocean.synthesis == Synthesis::tiling_and_blending ? kBlendWeightSumBound * bound : bound;
 }
 
 PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFields>& fields,
@@ -130,15 +167,8 @@ PointFields combine_direct(const Ocean& ocean, double x, double z, double time) 
 
 PointFields combine_direct(const Ocean& ocean, const std::vector<EvolvedCascade>& evolved, double x,
                            double z) {
-  OCEANREF_EXPECTS(
-      evolved.size() == ocean.cascades.size(),
-      "one evolved spectrum per cascade (evolve_ocean): " + std::to_string(evolved.size()) +
-          " for " + std::to_string(ocean.cascades.size()));
-  PointFields sum;
-  for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
-    const CascadeSpectra& c = ocean.cascades[i];
-    add_cascade(sum, direct_sum(c.low, c.high, evolved[i], x, z), c.choppiness);
-  }
+  expect_evolved(ocean, evolved);
+  PointFields sum = exemplar_sum(ocean, {}, evolved, x, z, Interpolation::direct);
   finish_combination(sum);
   return sum;
 }

@@ -15,6 +15,7 @@
 #include "waves/mastin.h"
 #include "waves/realization.h"
 #include "waves/surface.h"
+#include "waves/tiling.h"
 
 namespace oceanref {
 
@@ -38,6 +39,9 @@ struct WaveSettings {
   // The shortest wave [m]: λ_min = 1.73 cm for spectra without capillary physics (Gamper §4.4),
   // 0 (no floor) for the Unified spectrum.
   double minimum_wavelength = kMinimumWavelength;
+  // How the cascades' periodic exemplar covers the plane (waves/tiling.h).
+  Synthesis synthesis = Synthesis::periodic;
+  TilingSettings tiling;  // tiling_and_blending only
 };
 
 struct CascadeSpectra {
@@ -51,6 +55,12 @@ struct Ocean {
   std::vector<CascadeSpectra> cascades;
   // The filter whose power Θ_f the mastin realization drew h0 from (the spectrum's Θ otherwise).
   MastinFilterModel filter;
+  // periodic: the cascades' sum repeated; tiling_and_blending: that sum is the exemplar of
+  // `tiling`, which every reading of the surface (combine_at, combine_surface_at,
+  // displaced_point, ...) blends. The FFT grids, direct sums and footprint lattices of single
+  // cascades are the exemplar's.
+  Synthesis synthesis = Synthesis::periodic;
+  Tiling tiling;
 };
 
 // Bytes the wave grids of `settings` need: per cell of each cascade's two grids the frozen
@@ -69,6 +79,10 @@ double default_minimum_wavelength(SpectrumModel model);
 // with index i). Throws SettingError for invalid spectrum settings.
 Ocean realize_ocean(const WaveSettings& settings, int threads);
 
+// The resolved tiling of `settings` (tiling_and_blending): the edge from the tile size and the
+// exemplar's period, the largest cascade size.
+Tiling resolve_tiling(const WaveSettings& settings);
+
 // Raw fields of every cascade at time t.
 std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads);
 
@@ -79,6 +93,7 @@ std::vector<EvolvedCascade> evolve_ocean(const Ocean& ocean, double time);
 // summation over every component of every cascade (at time t, or from evolve_ocean).
 PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                double x, double z);
+// combine_direct is the exemplar's (never tiled).
 PointFields combine_direct(const Ocean& ocean, double x, double z, double time);
 PointFields combine_direct(const Ocean& ocean, const std::vector<EvolvedCascade>& evolved, double x,
                            double z);
@@ -91,7 +106,7 @@ PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fie
                        const std::vector<EvolvedCascade>& evolved, double x, double z,
                        Interpolation mode);
 // Σ|h0| over every cascade: a bound of |η| at any point and time (|h(k, t)| ≤ ½(|h0(k)| +
-// |h0(−k)|)), and of |D| per unit choppiness.
+// |h0(−k)|)), and of |D| per unit choppiness; √3 times that when tiled (Σ_v|w_v| ≤ √3).
 double height_bound(const Ocean& ocean);
 
 // One cascade's Jacobian determinant (eq. 4.26 with its own u) on its high-resolution grid.

@@ -34,12 +34,11 @@ CascadeSurface cascade_surface_from_grids(const CascadeFields& f, double x, doub
   return c;
 }
 
-PointFields combine_surface_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
-                               const std::vector<EvolvedCascade>& evolved, double x, double z,
-                               Interpolation mode) {
-  OCEANREF_EXPECTS(
-      (mode == Interpolation::direct ? evolved.size() : fields.size()) == ocean.cascades.size(),
-      "one field set (or evolved spectrum, for direct) per cascade");
+namespace {
+// The exemplar's raw sums of the rendered surface at (x, z), before finish_surface_combination.
+PointFields exemplar_surface_sum(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                                 const std::vector<EvolvedCascade>& evolved, double x, double z,
+                                 Interpolation mode) {
   PointFields sum;
   for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
     const CascadeSpectra& c = ocean.cascades[i];
@@ -48,6 +47,27 @@ PointFields combine_surface_at(const Ocean& ocean, const std::vector<CascadeFiel
                                  : cascade_surface_from_grids(fields[i], x, z, mode);
     add_cascade_surface(sum, s, c.choppiness);
   }
+  return sum;
+}
+
+void expect_fields(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                   const std::vector<EvolvedCascade>& evolved, Interpolation mode) {
+  OCEANREF_EXPECTS(
+      (mode == Interpolation::direct ? evolved.size() : fields.size()) == ocean.cascades.size(),
+      "one field set (or evolved spectrum, for direct) per cascade");
+}
+}  // namespace
+
+PointFields combine_surface_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                               const std::vector<EvolvedCascade>& evolved, double x, double z,
+                               Interpolation mode) {
+  expect_fields(ocean, fields, evolved, mode);
+  const auto exemplar = [&](double ex, double ez) {
+    return exemplar_surface_sum(ocean, fields, evolved, ex, ez, mode);
+  };
+  PointFields sum = ocean.synthesis == Synthesis::tiling_and_blending
+                        ? blended_sum(ocean.tiling, x, z, exemplar)
+                        : exemplar(x, z);
   finish_surface_combination(sum);
   return sum;
 }
@@ -61,7 +81,27 @@ PointFields combine_shading_at(const Ocean& ocean, const std::vector<CascadeFiel
   return combine_at(ocean, fields, evolved, x, z, mode);
 }
 
-// Gamper eq. 4.19–4.20, 4.24: p(x0) = (x0 + Σ u_i D_i, Σ η_i).
+namespace {
+// The exemplar's offset q = (Σ u_i D_x,i, Σ η_i, Σ u_i D_z,i) at (x, z) from the grids, summed as
+// add_cascade and add_cascade_surface do: cascade by cascade, from 0.
+DisplacedPoint exemplar_offset(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                               double x, double z, Interpolation mode) {
+  const auto index = [](Field q) { return static_cast<std::size_t>(q); };
+  DisplacedPoint q;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const CascadeFields& f = fields[i];
+    const double u = ocean.cascades[i].choppiness;
+    const GridStencil stencil = grid_stencil(f.low_resolution, f.size, x, z, mode);
+    q.height += 1.0 * read_value(f.values[index(Field::height)], stencil);
+    q.x += u * read_value(f.values[index(Field::displacement_x)], stencil);
+    q.z += u * read_value(f.values[index(Field::displacement_z)], stencil);
+  }
+  return q;
+}
+}  // namespace
+
+// Gamper eq. 4.19–4.20, 4.24: p(x0) = (x0 + Σ u_i D_i, Σ η_i); tiled, Lutz eq. 6 and 8 as
+// add_tile sums them.
 DisplacedPoint displaced_point(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                const std::vector<EvolvedCascade>& evolved, double x0, double z0,
                                Interpolation mode, ShadingNormals normals) {
@@ -72,17 +112,19 @@ DisplacedPoint displaced_point(const Ocean& ocean, const std::vector<CascadeFiel
             z0 + p.raw[index(Field::displacement_z)]};
   }
   OCEANREF_EXPECTS(fields.size() == ocean.cascades.size(), "one field set per cascade");
-  // Summed as add_cascade and add_cascade_surface do: cascade by cascade, from 0.
-  double height = 0.0, dx = 0.0, dz = 0.0;
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    const CascadeFields& f = fields[i];
-    const double u = ocean.cascades[i].choppiness;
-    const GridStencil stencil = grid_stencil(f.low_resolution, f.size, x0, z0, mode);
-    height += 1.0 * read_value(f.values[index(Field::height)], stencil);
-    dx += u * read_value(f.values[index(Field::displacement_x)], stencil);
-    dz += u * read_value(f.values[index(Field::displacement_z)], stencil);
+  DisplacedPoint q;
+  if (ocean.synthesis == Synthesis::tiling_and_blending) {
+    for (const TileReading& r : tile_readings(ocean.tiling, x0, z0)) {
+      DisplacedPoint e = exemplar_offset(ocean, fields, r.x, r.z, mode);
+      turn_by_tile(r, e.x, e.z);
+      q.height += r.weight * e.height;
+      q.x += r.weight * e.x;
+      q.z += r.weight * e.z;
+    }
+  } else {
+    q = exemplar_offset(ocean, fields, x0, z0, mode);
   }
-  return {x0 + dx, height, z0 + dz};
+  return {x0 + q.x, q.height, z0 + q.z};
 }
 
 DisplacedPointDerivatives displaced_point_derivatives(const Ocean& ocean,
@@ -156,9 +198,7 @@ DisplacedSurfaceBounds displaced_surface_bounds(const Ocean& ocean,
                                                 const std::vector<CascadeFields>& fields,
                                                 const std::vector<EvolvedCascade>& evolved,
                                                 Interpolation mode) {
-  OCEANREF_EXPECTS(
-      (mode == Interpolation::direct ? evolved.size() : fields.size()) == ocean.cascades.size(),
-      "one field set (or evolved spectrum, for direct) per cascade");
+  expect_fields(ocean, fields, evolved, mode);
   // Sums over cascades of the bounds of D_x, η, D_z (D scaled by |u|).
   std::array<FieldBounds, 3> sum{};
   for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
@@ -184,6 +224,21 @@ DisplacedSurfaceBounds displaced_surface_bounds(const Ocean& ocean,
     out.lipschitz[c] = std::sqrt(sum[c].d_dx * sum[c].d_dx + sum[c].d_dz * sum[c].d_dz);
   }
   out.offset = {sum[0].value, sum[1].value, sum[2].value};
+  if (ocean.synthesis == Synthesis::tiling_and_blending) {
+    // A tile turned by θ mixes D_x and D_z: each bounded by |D| ≤ √(M_x² + M_z²), its gradient by
+    // L_x + L_z. The blend Σ w_v f_v: |·| ≤ √3 M, |∇·| ≤ √3 L + (12/a) M (tiling.h).
+    if (ocean.tiling.flow.kind != FlowKind::none) {
+      const double m = std::sqrt(out.offset[0] * out.offset[0] + out.offset[2] * out.offset[2]);
+      const double l = out.lipschitz[0] + out.lipschitz[2];
+      out.offset[0] = out.offset[2] = m;
+      out.lipschitz[0] = out.lipschitz[2] = l;
+    }
+    const double g = blend_weight_gradient_bound(ocean.tiling);
+    for (std::size_t c = 0; c < 3; ++c) {
+      out.lipschitz[c] = kBlendWeightSumBound * out.lipschitz[c] + g * out.offset[c];
+      out.offset[c] *= kBlendWeightSumBound;
+    }
+  }
   return out;
 }
 
