@@ -706,11 +706,22 @@ checks=$((checks + 1))
 expect 2 '--lines' acf "$tmp/acf_periodic.json" --lines 1
 expect 2 '--length: times --samples-per-period must be at most 1e6' acf "$tmp/acf_periodic.json" --length 1000 --samples-per-period 4096
 sed 's/"choppiness": -1}/"choppiness": -1, "synthesis": "tiled"}/' "$tmp/acf_periodic.json" >"$tmp/acf_bad.json"
-expect 2 "waves.synthesis: expected periodic or tiling_and_blending; got 'tiled'" acf "$tmp/acf_bad.json"
+expect 2 "waves.synthesis: expected one of periodic, tiling_and_blending, noise_blended; got 'tiled'" acf "$tmp/acf_bad.json"
 sed 's/"choppiness": -1}/"choppiness": -1, "synthesis": "tiling_and_blending", "tiling": {"tile_size": 20}}/' "$tmp/acf_periodic.json" >"$tmp/acf_bad.json"
 expect 2 'waves.tiling.tile_size: .*\[0.25, 16\]' acf "$tmp/acf_bad.json"
 sed 's/"choppiness": -1}/"choppiness": -1, "synthesis": "tiling_and_blending", "tiling": {"flow": "circular", "flow_center": [1, 2, 3]}}/' "$tmp/acf_periodic.json" >"$tmp/acf_bad.json"
 expect 2 'waves.tiling.flow_center: expected \[x, z\]' acf "$tmp/acf_bad.json"
+
+# --- bench lean: filtered shading against the supersampled lobe (Lutz Fig. 7) ------------------
+expect 0 '^method,footprint_m,lobe_error_mean,lobe_error_max,glint_error_mean$' bench lean \
+  --scene "$tmp/acf_tiled.json" --footprints 2 --samples 8 --footprint-sizes 5,20
+checks=$((checks + 1))
+[ "$(wc -l <"$tmp/out")" -eq 9 ] || fail "bench lean: expected a header and 4 methods x 2 sizes"
+checks=$((checks + 1))
+awk -F, 'NR > 1 && !($3 >= 0 && $3 < 10 && $5 >= 0) { exit 1 }' "$tmp/out" ||
+  fail "bench lean: errors out of range: $(cat "$tmp/out")"
+expect 2 '--footprint-sizes: each must be in \(0, 1e6\] m, got 0' bench lean --scene "$tmp/acf_tiled.json" --footprint-sizes 0
+expect 2 '--samples' bench lean --scene "$tmp/acf_tiled.json" --samples 1
 
 # --- determinism: identical bytes across runs -------------------------------------------------
 args=(spectrum --model unified --wind-speed 7.5 --wavevector 0.01:0,0.2:-0.1,3:4,370:0,1e4:1)

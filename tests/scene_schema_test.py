@@ -184,6 +184,14 @@ for path, s in leaves(schema):
         expect(path, [{"obj": "buoy.obj", "material": {"albedo": [0.5, 1.5, 0.5]}}], False)
         expect(path, [{"obj": "buoy.obj"}] * 65, False)
         continue
+    if path == "waves.cascades.band_edges":
+        # Its length and bounds follow from the cascades (the parser checks them against each
+        # cascade's Nyquist wavenumber: tests/test_waves.cpp); here beside the default four
+        # cascades of 1000 m at N = 8 (Nyquist 0.025, 0.041, 0.066 and 0.107 rad/m).
+        expect(path, [0.01, 0.03, 0.05], True)
+        expect(path, [0, 0.03, 0.05], False)
+        expect(path, [0.01, 0.03, 2e6], False)
+        continue
     kind = s.get("type")
     if "enum" in s:
         for v in s["enum"]:

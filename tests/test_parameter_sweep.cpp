@@ -189,7 +189,8 @@ void set_value(json& scene, const Range& r, double v) {
       node = defaults;
     }
     node[static_cast<std::size_t>(r.index)] = value;
-  } else if (r.array_size == 0 && r.path == "waves.cascades.sizes") {
+  } else if (r.array_size == 0 &&
+             (r.path == "waves.cascades.sizes" || r.path == "waves.cascades.band_edges")) {
     node = json::array({value});
   } else {
     node = value;

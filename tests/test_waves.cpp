@@ -5,12 +5,17 @@
 #include <numbers>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "scene/scene.h"
 #include "spectrum/moments.h"
 #include "test_support.h"
 #include "waves/direct_sum.h"
 #include "waves/fft.h"
 #include "waves/fields.h"
 #include "waves/mastin.h"
+#include "waves/ocean.h"
 #include "waves/random.h"
 
 using namespace oceanref;
@@ -379,6 +384,56 @@ TEST_CASE("cascades: golden-ratio sizes (eq. 4.27) and band partitioning samples
   // A λ_min floor below the last band caps it.
   const auto capped = cascade_bands({10.0}, 256, true, 50.0);
   CHECK(capped[0].upper == 50.0);
+}
+
+TEST_CASE("cascades: chosen band edges (Lutz eq. 3) hand over where given; the scene checks them") {
+  const std::vector<double> sizes{250.0, 210.0, 130.0};
+  const auto bands = cascade_bands(sizes, 64, true, 1e9, {0.06, 0.12});
+  CHECK(bands[0].lower == 0.0);
+  CHECK(bands[0].upper == 0.06);
+  CHECK(bands[1].lower == 0.06);
+  CHECK(bands[1].upper == 0.12);
+  CHECK(bands[2].lower == 0.12);
+  CHECK(bands[2].upper == nyquist_wavenumber(130.0, 64));
+  // The scene: edges reach the realized cascades (each h0 only inside its band) and are checked.
+  const auto scene_with = [](const nlohmann::json& edges) {
+    nlohmann::json s = {
+        {"waves",
+         {{"cascades", {{"sizes", {250, 210, 130}}, {"band_edges", edges}}}, {"resolution", 16}}}};
+    return parse_scene(s);
+  };
+  const Scene scene = scene_with({0.06, 0.12});
+  const Ocean ocean = realize_ocean(scene.waves, 1);
+  int sampled = 0;
+  for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
+    const PatternSpectrum& r = ocean.cascades[i].low;
+    const double dk = wavenumber_spacing(sizes[i]);
+    for (int b = 0; b < 16; ++b) {
+      for (int a = 0; a < 16; ++a) {
+        if (r.h0[grid_offset(a, b, 16)] == Complex(0.0)) continue;
+        const double k = std::hypot(wave_index(a, 16) * dk, wave_index(b, 16) * dk);
+        CHECK(k >= (i == 0 ? 0.0 : std::vector<double>{0.06, 0.12}[i - 1]));
+        CHECK(k < (i == 2 ? 1e9 : std::vector<double>{0.06, 0.12}[i]));
+        ++sampled;
+      }
+    }
+  }
+  CHECK(sampled > 20);
+  const auto error = [&](const nlohmann::json& edges) {
+    try {
+      (void)scene_with(edges);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK(error({0.06}).find("waves.cascades.band_edges: expected an array of 2") !=
+        std::string::npos);
+  CHECK(error({0.12, 0.06}).find("waves.cascades.band_edges[1]: must be in (0.12, ") !=
+        std::string::npos);
+  // Cascade 0's Nyquist wavenumber on 16²: π·16/250 = 0.201 rad/m.
+  CHECK(error({0.3, 0.35}).find("waves.cascades.band_edges[0]: must be in (0, 0.2010619") !=
+        std::string::npos);
 }
 
 TEST_CASE("determinism: fields are bit-identical for 1, 2, 3 and 8 threads and across runs") {

@@ -10,6 +10,7 @@
 #include "cli/text.h"
 #include "conformance/fields_output.h"
 #include "conformance/float32_backend.h"
+#include "conformance/lean_study.h"
 #include "conformance/lighting_map.h"
 #include "conformance/study.h"
 #include "io/exr.h"
@@ -128,6 +129,32 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   study->add_option("--threads", study_flags->threads, "worker threads")
       ->check(integer_in(1, 1024))
       ->capture_default_str();
+  struct LeanFlags {
+    std::string scene;
+    std::string sizes;
+    int footprints = 12, samples = 64, threads = 2;
+  };
+  auto lean_flags = std::make_shared<LeanFlags>();
+  CLI::App* lean = bench->add_subcommand(
+      "lean",
+      "Filtered shading at a distance (Lutz et al. 2024 Fig. 7): the specular lobe of pixel "
+      "footprints by normal mapping, LEAN of the tiles without and with the rotation correction "
+      "(eq. 13, 16, 19-21) and LEAN of the surface's own moments, against the supersampled "
+      "lobe; CSV method,footprint_m,lobe_error_mean,lobe_error_max,glint_error_mean "
+      "(src/conformance/lean_study.h).");
+  lean->add_option("--scene", lean_flags->scene, "scene file")->required();
+  lean->add_option("--footprint-sizes", lean_flags->sizes,
+                   "footprint widths [m], comma-separated (default: 1/16, 1/4 and 1 exemplar "
+                   "period); each 8 times as long along x");
+  lean->add_option("--footprints", lean_flags->footprints, "footprints per size")
+      ->check(integer_in(1, 10000))
+      ->capture_default_str();
+  lean->add_option("--samples", lean_flags->samples, "supersamples per footprint axis")
+      ->check(integer_in(2, 1024))
+      ->capture_default_str();
+  lean->add_option("--threads", lean_flags->threads, "worker threads")
+      ->check(integer_in(1, 1024))
+      ->capture_default_str();
   struct Float32Flags {
     std::string scene, output, golden, defect = "none", stage = "fields";
     double time = 0.0;
@@ -170,8 +197,8 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       ->check(integer_in(1, 1024))
       ->capture_default_str();
   return [float32, float32_flags, flags, synthesis, lighting, lighting_order, render_cmd,
-          render_flags, study, study_flags, lighting_map, map_options, lighting_pixels,
-          pixel_flags](std::ostream& out) {
+          render_flags, study, study_flags, lighting_map, map_options, lighting_pixels, pixel_flags,
+          lean, lean_flags](std::ostream& out) {
     if (float32->parsed()) {
       const Float32Flags& g = *float32_flags;
       Scene scene;
@@ -229,6 +256,24 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       } catch (const LightingPixelsInputError& e) {
         throw UsageError(e.reference ? "REFERENCE" : "FAST_AOV", e.what());
       }
+      return;
+    }
+    if (lean->parsed()) {
+      const LeanFlags& l = *lean_flags;
+      LeanStudySettings settings;
+      settings.footprints = l.footprints;
+      settings.samples_per_axis = l.samples;
+      settings.threads = l.threads;
+      if (!l.sizes.empty()) {
+        settings.footprint_sizes = parse_number_list("--footprint-sizes", l.sizes, "(0, 1e6] m");
+        for (const double v : settings.footprint_sizes) {
+          if (!(v > 0.0 && v <= 1e6)) {
+            throw UsageError("--footprint-sizes",
+                             "each must be in (0, 1e6] m, got " + shortest_number(v));
+          }
+        }
+      }
+      bench_lean(out, lean_study(load_scene(l.scene), settings));
       return;
     }
     if (study->parsed()) {

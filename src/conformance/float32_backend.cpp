@@ -430,10 +430,10 @@ std::vector<Float32Cascade> float32_cascades(const WaveSettings& waves, Float32D
   const double k_max = waves.minimum_wavelength > 0.0
                            ? 2.0 * std::numbers::pi / waves.minimum_wavelength
                            : std::numeric_limits<double>::infinity();
-  const std::vector<Band> high_bands =
-      cascade_bands(waves.sizes, waves.resolution, waves.band_partitioning, k_max);
-  const std::vector<Band> low_bands =
-      cascade_bands(waves.sizes, waves.low_resolution, waves.band_partitioning, k_max);
+  const std::vector<Band> high_bands = cascade_bands(
+      waves.sizes, waves.resolution, waves.band_partitioning, k_max, waves.band_edges);
+  const std::vector<Band> low_bands = cascade_bands(
+      waves.sizes, waves.low_resolution, waves.band_partitioning, k_max, waves.band_edges);
   std::vector<Float32Cascade> cascades;
   for (std::size_t i = 0; i < waves.sizes.size(); ++i) {
     const auto index = static_cast<std::uint32_t>(i);

@@ -51,6 +51,7 @@ const std::vector<std::string>& scene_key_paths() {
       "waves.cascades.largest",
       "waves.cascades.count",
       "waves.cascades.factor",
+      "waves.cascades.band_edges",
       "waves.resolution",
       "waves.low_resolution",
       "waves.choppiness",
@@ -66,6 +67,8 @@ const std::vector<std::string>& scene_key_paths() {
       "waves.tiling.flow",
       "waves.tiling.flow_direction_deg",
       "waves.tiling.flow_center",
+      "waves.noise.weight",
+      "waves.noise.cell_size",
       "waves.mastin.filter",
       "waves.mastin.fractal_dimension",
       "waves.mastin.animation",
@@ -444,6 +447,41 @@ std::vector<double> parse_sizes(const Section& waves) {
                             factor == "golden-large" ? GoldenFactor::large : GoldenFactor::small);
 }
 
+// waves.cascades.band_edges: count − 1 increasing wavenumbers, each at most its cascade's Nyquist
+// wavenumber on the N_l grid (the one holding η and D), the last below the last cascade's.
+std::vector<double> parse_band_edges(const Section& waves, const WaveSettings& w) {
+  if (!waves.has("cascades")) return {};
+  const Section c(waves.at("cascades"), waves.where("cascades"));
+  if (!c.has("band_edges")) return {};
+  const std::string key = c.where("band_edges");
+  if (!w.band_partitioning) throw SceneError(key, "needs waves.band_partitioning true");
+  const json& list = c.at("band_edges");
+  const std::size_t count = w.sizes.size() - 1;
+  if (!list.is_array() || list.size() != count) {
+    throw SceneError(key, "expected an array of " + std::to_string(count) +
+                              " wavenumbers (one fewer than the cascades) in rad/m, got " +
+                              describe(list));
+  }
+  std::vector<double> edges;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string p = key + "[" + std::to_string(i) + "]";
+    const double lower = i == 0 ? 0.0 : edges.back();
+    // The band [e_{i−1}, e_i) must fit under cascade i's Nyquist wavenumber, and the last band
+    // [e_{count−1}, Nyquist of the last) must not be empty.
+    const double upper = std::fmin(nyquist_wavenumber(w.sizes[i], w.low_resolution),
+                                   nyquist_wavenumber(w.sizes[i + 1], w.low_resolution));
+    const double e = checked_number(list[i], p, 0.0, 1e6, " rad/m");
+    if (!(e > lower && e <= upper)) {
+      throw SceneError(p, "must be in (" + shortest_number(lower) + ", " + shortest_number(upper) +
+                              "] rad/m (above the previous edge, at most the Nyquist wavenumber "
+                              "pi*N_l/L of the cascades on either side), got " +
+                              shortest_number(e));
+    }
+    edges.push_back(e);
+  }
+  return edges;
+}
+
 std::vector<double> parse_choppiness(const Section& waves, std::size_t count, bool allow_positive) {
   const double hi = allow_positive ? 10.0 : 0.0;
   const auto check = [&](const json& value, const std::string& p) {
@@ -504,6 +542,12 @@ glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, doubl
 // waves.synthesis and the waves.tiling section (waves/tiling.h).
 void parse_synthesis(const Section& waves, WaveSettings& w) {
   w.synthesis = choice(waves, "synthesis", kSyntheses, "periodic");
+  if (waves.has("noise")) {
+    const Section noise(waves.at("noise"), "waves.noise");
+    w.noise_weight = noise.number("weight", w.noise_weight, 0.0, 1.0);
+    w.noise_cell_size =
+        noise.number("cell_size", w.noise_cell_size, 0.01, 64.0, " exemplar periods");
+  }
   if (!waves.has("tiling")) return;
   const Section tiling(waves.at("tiling"), "waves.tiling");
   TilingSettings& t = w.tiling;
@@ -728,6 +772,10 @@ std::string tiling_inert(const Scene& s) {
              ? ""
              : "waves.synthesis is not tiling_and_blending";
 }
+std::string noise_inert(const Scene& s) {
+  return s.waves.synthesis == Synthesis::noise_blended ? ""
+                                                       : "waves.synthesis is not noise_blended";
+}
 std::string mastin_inert(const Scene& s) {
   return s.waves.realization == Realization::mastin ? "" : "waves.realization is not mastin";
 }
@@ -808,6 +856,10 @@ const std::vector<KeyUse>& key_uses() {
        [](const Scene& s) -> std::string {
          return s.waves.sizes.size() == 1 ? "there is one cascade (count 1)" : "";
        }},
+      {"waves.cascades.band_edges",
+       [](const Scene& s) -> std::string {
+         return s.waves.sizes.size() == 1 ? "there is one cascade (no hand-over)" : "";
+       }},
       {"waves.allow_positive_choppiness",
        [](const Scene& s) -> std::string {
          return any_choppiness(s.waves, true) ? "" : "no cascade has positive choppiness";
@@ -838,6 +890,12 @@ const std::vector<KeyUse>& key_uses() {
          return k == FlowKind::circular || k == FlowKind::converging
                     ? ""
                     : "waves.tiling.flow is neither circular nor converging";
+       }},
+      {"waves.noise.weight", noise_inert},
+      {"waves.noise.cell_size",
+       [](const Scene& s) -> std::string {
+         if (const std::string r = noise_inert(s); !r.empty()) return r;
+         return s.waves.noise_weight == 0.0 ? "waves.noise.weight is 0" : "";
        }},
       {"waves.foam.steps", foam_inert},
       {"waves.foam.decay", foam_sequence_inert},
@@ -954,6 +1012,7 @@ Scene parse_scene(const json& document) {
       }
     }
   }
+  w.band_edges = parse_band_edges(waves, w);
   parse_synthesis(waves, w);
   w.minimum_wavelength = waves.number(
       "minimum_wavelength", default_minimum_wavelength(w.spectrum.model), 0.0, 100.0, " m");

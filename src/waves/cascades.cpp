@@ -25,14 +25,14 @@ double nyquist_wavenumber(double size, int resolution) {
 }
 
 std::vector<Band> cascade_bands(const std::vector<double>& sizes, int resolution, bool partitioned,
-                                double k_max) {
+                                double k_max, const std::vector<double>& edges) {
   std::vector<Band> bands;
   double lower = 0.0;
-  for (const double size : sizes) {
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
     Band b;
     if (partitioned) {
       b.lower = lower;
-      b.upper = nyquist_wavenumber(size, resolution);
+      b.upper = i < edges.size() ? edges[i] : nyquist_wavenumber(sizes[i], resolution);
       lower = b.upper;
     }
     b.upper = std::fmin(b.upper, k_max);

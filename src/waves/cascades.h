@@ -33,7 +33,11 @@ double nyquist_wavenumber(double size, int resolution);
 
 // The band of each cascade (sizes strictly decreasing when partitioned). Without partitioning
 // every cascade samples its whole grid. Every band is capped at k_max (the λ_min floor, or ∞).
+// `edges` (count − 1 increasing wavenumbers, partitioned only) replaces the hand-over at each
+// Nyquist wavenumber by chosen ones, as Dupuy & Bruneton 2012's sub-spectra (Lutz eq. 3): cascade
+// i takes [e_{i−1}, e_i), the last [e_{count−2}, its Nyquist wavenumber); each e_i must not
+// exceed cascade i's Nyquist wavenumber (checked by the scene parser).
 std::vector<Band> cascade_bands(const std::vector<double>& sizes, int resolution, bool partitioned,
-                                double k_max);
+                                double k_max, const std::vector<double>& edges = {});
 
 }  // namespace oceanref

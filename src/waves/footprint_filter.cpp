@@ -189,7 +189,7 @@ std::pair<int, int> level_grids(double size, int low_resolution, int high_resolu
 }
 
 Ocean filtered_ocean(const Ocean& ocean, double radius) {
-  Ocean out{ocean.spectrum, {}, ocean.filter, ocean.synthesis, ocean.tiling};
+  Ocean out{ocean.spectrum, {}, ocean.filter, ocean.synthesis, ocean.tiling, ocean.noise};
   for (const CascadeSpectra& c : ocean.cascades) {
     CascadeSpectra f;
     const auto [low, high] = level_grids(c.low.pattern.size, c.low.pattern.resolution,

@@ -33,9 +33,45 @@ Tiling resolve_tiling(const WaveSettings& settings) {
           settings.spectrum.wind_direction, settings.tiling.flow};
 }
 
+namespace {
+// ½Σ_k|g h0(k)|² for g = d(k_x, k), 1, d(k_z, k) (eq. 4.18): the time mean of the spatial mean
+// square of D_x, η and D_z of one pattern (|h(k, t)|² averages to ¼(|h0(k)|² + |h0(−k)|²)).
+std::array<double, 3> pattern_mean_squares(const PatternSpectrum& s) {
+  const int n = s.pattern.resolution;
+  const double dk = wavenumber_spacing(s.pattern.size);
+  std::array<double, 3> sums{};
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      const std::size_t k = grid_offset(a, b, n);
+      const double power = s.h0[k].re * s.h0[k].re + s.h0[k].im * s.h0[k].im;
+      const double gx = displacement_factor(wave_index(a, n), dk, s.inverse_wavenumber[k], n).im;
+      const double gz = displacement_factor(wave_index(b, n), dk, s.inverse_wavenumber[k], n).im;
+      sums[0] += gx * gx * power;
+      sums[1] += power;
+      sums[2] += gz * gz * power;
+    }
+  }
+  return {0.5 * sums[0], 0.5 * sums[1], 0.5 * sums[2]};
+}
+
+// Lutz eq. 2's noise for a realized ocean (noise.h): its mean squares those of the exemplar.
+NoiseBlend resolve_noise(const WaveSettings& settings, const Ocean& ocean, double period) {
+  std::array<double, 3> mean_squares{};
+  for (const CascadeSpectra& c : ocean.cascades) {
+    const std::array<double, 3> m = pattern_mean_squares(c.low);
+    const double u2 = c.choppiness * c.choppiness;
+    mean_squares[0] += u2 * m[0];
+    mean_squares[1] += m[1];
+    mean_squares[2] += u2 * m[2];
+  }
+  return make_noise_blend(settings.seed, settings.noise_weight, settings.noise_cell_size * period,
+                          mean_squares);
+}
+}  // namespace
+
 Ocean realize_ocean(const WaveSettings& settings, int threads) {
   const ReferenceFpEnvironment fp;
-  Ocean ocean{make_spectrum(settings.spectrum), {}, {}, settings.synthesis, {}};
+  Ocean ocean{make_spectrum(settings.spectrum), {}, {}, settings.synthesis, {}, {}};
   if (settings.synthesis == Synthesis::tiling_and_blending) ocean.tiling = resolve_tiling(settings);
   if (settings.realization == Realization::mastin) {
     ocean.filter = make_mastin_filter(ocean.spectrum, settings.mastin);
@@ -43,10 +79,11 @@ Ocean realize_ocean(const WaveSettings& settings, int threads) {
   const double k_max = settings.minimum_wavelength > 0.0
                            ? 2.0 * std::numbers::pi / settings.minimum_wavelength
                            : std::numeric_limits<double>::infinity();
-  const std::vector<Band> high_bands =
-      cascade_bands(settings.sizes, settings.resolution, settings.band_partitioning, k_max);
+  const std::vector<Band> high_bands = cascade_bands(
+      settings.sizes, settings.resolution, settings.band_partitioning, k_max, settings.band_edges);
   const std::vector<Band> low_bands =
-      cascade_bands(settings.sizes, settings.low_resolution, settings.band_partitioning, k_max);
+      cascade_bands(settings.sizes, settings.low_resolution, settings.band_partitioning, k_max,
+                    settings.band_edges);
   const int count = static_cast<int>(settings.sizes.size());
   ocean.cascades.resize(settings.sizes.size());
   // h0 of one pattern by the scene's realization (one thread inside: the cascades are the
@@ -67,6 +104,9 @@ Ocean realize_ocean(const WaveSettings& settings, int threads) {
                   : realize({index, settings.sizes[c], settings.low_resolution, low_bands[c]});
     out.choppiness = settings.choppiness[c];
   });
+  if (settings.synthesis == Synthesis::noise_blended) {
+    ocean.noise = resolve_noise(settings, ocean, resolve_tiling(settings).period);
+  }
   return ocean;
 }
 
@@ -133,9 +173,7 @@ PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fie
   const auto exemplar = [&](double ex, double ez) {
     return exemplar_sum(ocean, fields, evolved, ex, ez, mode);
   };
-  PointFields sum = ocean.synthesis == Synthesis::tiling_and_blending
-                        ? blended_sum(ocean.tiling, x, z, exemplar)
-                        : exemplar(x, z);
+  PointFields sum = synthesized_sum(ocean, x, z, exemplar);
   finish_combination(sum);
   return sum;
 }
@@ -145,7 +183,16 @@ double height_bound(const Ocean& ocean) {
   for (const CascadeSpectra& c : ocean.cascades) {
     for (const Complex& h : c.low.h0) bound += abs(h);  // η and D live on the low grid
   }
-  return ocean.synthesis == Synthesis::tiling_and_blending ? kBlendWeightSumBound * bound : bound;
+  switch (ocean.synthesis) {
+    case Synthesis::tiling_and_blending:
+      return kBlendWeightSumBound * bound;
+    case Synthesis::noise_blended:
+      return (1.0 - ocean.noise.weight) * bound +
+             ocean.noise.weight * ocean.noise.amplitude[1] * kGradientNoiseValueBound;
+    case Synthesis::periodic:
+      break;
+  }
+  return bound;
 }
 
 PointFields combine_from_grids(const Ocean& ocean, const std::vector<CascadeFields>& fields,

@@ -13,6 +13,7 @@
 #include "waves/fields.h"
 #include "waves/interpolation.h"
 #include "waves/mastin.h"
+#include "waves/noise.h"
 #include "waves/realization.h"
 #include "waves/surface.h"
 #include "waves/tiling.h"
@@ -36,12 +37,18 @@ struct WaveSettings {
   int low_resolution = 256;             // N_l ≤ N_h: η and D (multi-resolution when smaller)
   std::vector<double> choppiness{0.0};  // u_i ≤ 0 per cascade (eq. 4.20, 4.24)
   bool band_partitioning = true;
+  // Chosen hand-over wavenumbers [rad/m] between the partitioned cascades (cascade_bands); empty:
+  // each cascade's Nyquist wavenumber.
+  std::vector<double> band_edges;
   // The shortest wave [m]: λ_min = 1.73 cm for spectra without capillary physics (Gamper §4.4),
   // 0 (no floor) for the Unified spectrum.
   double minimum_wavelength = kMinimumWavelength;
   // How the cascades' periodic exemplar covers the plane (waves/tiling.h).
   Synthesis synthesis = Synthesis::periodic;
   TilingSettings tiling;  // tiling_and_blending only
+  // noise_blended only: w_P (Lutz Fig. 8: 33%) and the noise lattice's spacing in exemplar periods.
+  double noise_weight = 0.33;
+  double noise_cell_size = 1.0;
 };
 
 struct CascadeSpectra {
@@ -61,7 +68,27 @@ struct Ocean {
   // cascades are the exemplar's.
   Synthesis synthesis = Synthesis::periodic;
   Tiling tiling;
+  NoiseBlend noise;  // noise_blended
 };
+
+// The raw sums at (x, z) (before finish_combination) of the ocean's synthesis, from the
+// exemplar's raw sums exemplar(x', z') at any point: the exemplar itself (periodic), the blend of
+// its tiles (tiling_and_blending), or its mix with the noise (noise_blended, Lutz eq. 2).
+template <class ExemplarSum>
+PointFields synthesized_sum(const Ocean& ocean, double x, double z, const ExemplarSum& exemplar) {
+  switch (ocean.synthesis) {
+    case Synthesis::tiling_and_blending:
+      return blended_sum(ocean.tiling, x, z, exemplar);
+    case Synthesis::noise_blended: {
+      PointFields sum = exemplar(x, z);
+      mix_noise(sum, noise_fields(ocean.noise, x, z), ocean.noise.weight);
+      return sum;
+    }
+    case Synthesis::periodic:
+      break;
+  }
+  return exemplar(x, z);
+}
 
 // Bytes the wave grids of `settings` need: per cell of each cascade's two grids the frozen
 // spectrum (h0, 1/k, ω), h(k, t), the packed transform and its copies, the eight

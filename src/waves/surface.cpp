@@ -65,9 +65,7 @@ PointFields combine_surface_at(const Ocean& ocean, const std::vector<CascadeFiel
   const auto exemplar = [&](double ex, double ez) {
     return exemplar_surface_sum(ocean, fields, evolved, ex, ez, mode);
   };
-  PointFields sum = ocean.synthesis == Synthesis::tiling_and_blending
-                        ? blended_sum(ocean.tiling, x, z, exemplar)
-                        : exemplar(x, z);
+  PointFields sum = synthesized_sum(ocean, x, z, exemplar);
   finish_surface_combination(sum);
   return sum;
 }
@@ -123,6 +121,14 @@ DisplacedPoint displaced_point(const Ocean& ocean, const std::vector<CascadeFiel
     }
   } else {
     q = exemplar_offset(ocean, fields, x0, z0, mode);
+    if (ocean.synthesis == Synthesis::noise_blended) {
+      // As mix_noise does (Lutz eq. 2).
+      const PointFields n = noise_fields(ocean.noise, x0, z0);
+      const double w = ocean.noise.weight;
+      q.height = (1.0 - w) * q.height + w * n.raw[index(Field::height)];
+      q.x = (1.0 - w) * q.x + w * n.raw[index(Field::displacement_x)];
+      q.z = (1.0 - w) * q.z + w * n.raw[index(Field::displacement_z)];
+    }
   }
   return {x0 + q.x, q.height, z0 + q.z};
 }
@@ -237,6 +243,15 @@ DisplacedSurfaceBounds displaced_surface_bounds(const Ocean& ocean,
     for (std::size_t c = 0; c < 3; ++c) {
       out.lipschitz[c] = kBlendWeightSumBound * out.lipschitz[c] + g * out.offset[c];
       out.offset[c] *= kBlendWeightSumBound;
+    }
+  } else if (ocean.synthesis == Synthesis::noise_blended) {
+    // (1 − w)q + w A n(x/λ): |n| ≤ √2, |∇n| ≤ kGradientNoiseSlopeBound per lattice unit.
+    const NoiseBlend& n = ocean.noise;
+    for (std::size_t c = 0; c < 3; ++c) {
+      out.lipschitz[c] = (1.0 - n.weight) * out.lipschitz[c] +
+                         n.weight * n.amplitude[c] * kGradientNoiseSlopeBound / n.cell;
+      out.offset[c] =
+          (1.0 - n.weight) * out.offset[c] + n.weight * n.amplitude[c] * kGradientNoiseValueBound;
     }
   }
   return out;

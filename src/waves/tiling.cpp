@@ -102,6 +102,8 @@ std::array<TileReading, 3> tile_readings(const Tiling& tiling, double x, double 
     TileReading& r = out[v];
     const std::array<double, 2> h = tile_offset(tiling.seed, triangle.vertices[v], tiling.period);
     const double px = x + h[0], pz = z + h[1];
+    r.offset_x = h[0];
+    r.offset_z = h[1];
     r.x = px;
     r.z = pz;
     if (tiling.flow.kind != FlowKind::none) {

@@ -24,11 +24,13 @@
 
 namespace oceanref {
 
-// How the plane is covered: the periodic exemplar repeated, or tiled and blended.
-enum class Synthesis { periodic, tiling_and_blending };
-inline constexpr std::array<Choice<Synthesis>, 2> kSyntheses{{
+// How the plane is covered: the periodic exemplar repeated, tiled and blended, or mixed with
+// aperiodic noise (Lutz eq. 2, the paper's baseline; waves/noise.h).
+enum class Synthesis { periodic, tiling_and_blending, noise_blended };
+inline constexpr std::array<Choice<Synthesis>, 3> kSyntheses{{
     {Synthesis::periodic, "periodic"},
     {Synthesis::tiling_and_blending, "tiling_and_blending"},
+    {Synthesis::noise_blended, "noise_blended"},
 }};
 
 // The flow map F(x) (Lutz §5): the direction the waves travel at x. none: the wind's
@@ -98,9 +100,10 @@ double flow_angle(const FlowMap& flow, double wind_angle, double x, double z);
 // One tile's reading at a point: where in the exemplar (R(−θ)(x + h), Lutz eq. 8 in column
 // vectors), the rotation R(θ) its vectors are turned by, and its blending weight with gradient.
 struct TileReading {
-  double x = 0.0, z = 0.0;      // exemplar position [m]
-  double cos = 1.0, sin = 0.0;  // of θ
-  bool rotated = false;         // θ ≠ 0
+  double x = 0.0, z = 0.0;                // exemplar position [m]
+  double offset_x = 0.0, offset_z = 0.0;  // h(k_v) [m]
+  double cos = 1.0, sin = 0.0;            // of θ
+  bool rotated = false;                   // θ ≠ 0
   double weight = 0.0;
   double dw_dx = 0.0, dw_dz = 0.0;
 };
