@@ -25,7 +25,7 @@ namespace oceanref::cli {
 namespace {
 struct AcfFlags {
   std::vector<std::string> scenes;
-  std::string output, svg, map, direction = "0", length = "8", area = "256";
+  std::string output, svg, map, direction = "0", length = "8", area = "256", max_memory;
   int lines = 4000, samples_per_period = 32, map_pixels = 256, threads = 0;
   std::uint64_t seed = 1;
 };
@@ -190,6 +190,7 @@ std::function<void(std::ostream&)> add_acf_command(CLI::App& app) {
   cmd->add_option("--threads", flags->threads,
                   "worker threads (default: all cores); the output is identical for any count")
       ->check(integer_in(0, 1024, " (0: all cores)"));
+  cmd->add_option("--max-memory", flags->max_memory, kMaxMemoryHelp);
   return [flags](std::ostream& out) {
     AutocorrelationSettings settings;
     settings.lines = flags->lines;
@@ -209,7 +210,8 @@ std::function<void(std::ostream&)> add_acf_command(CLI::App& app) {
     std::vector<SceneAcf> results;
     for (const std::string& path : flags->scenes) {
       const Scene scene = load_scene(path);
-      require_within(fields_memory_estimate(scene), max_memory_flag(""), "--max-memory");
+      require_within(fields_memory_estimate(scene), max_memory_flag(flags->max_memory),
+                     "--max-memory");
       progress("oceanref acf", "synthesizing " + path);
       const Ocean ocean = realize_ocean(scene.waves, threads);
       const Interpolation mode = scene.shading.interpolation;
