@@ -84,14 +84,8 @@ FootprintErrors footprint_errors(const Study& st, double cx, double cz, double a
       slopes.push_back(m.b);
       add_moments(exact, m);
       for (std::size_t t = 0; t < tile_count; ++t) {
-        const TileReading& r = tiles[t];
-        double ex = x + r.offset_x, ez = z + r.offset_z;
-        if (r.rotated) {
-          const double px = ex, pz = ez;
-          ex = r.cos * px + r.sin * pz;
-          ez = -r.sin * px + r.cos * pz;
-        }
-        add_moments(raw[t], tiled ? st.moments_at(st.exemplar, ex, ez) : m);
+        const std::array<double, 2> e = tile_exemplar_position(tiles[t], x, z);
+        add_moments(raw[t], tiled ? st.moments_at(st.exemplar, e[0], e[1]) : m);
       }
     }
   }

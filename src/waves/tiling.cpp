@@ -94,6 +94,13 @@ double flow_angle(const FlowMap& flow, double wind_angle, double x, double z) {
   return math::atan2(fz, fx) - wind_angle;
 }
 
+// R(−θ)(x + h) (Lutz eq. 8, whose row vectors times R(θ) are R(θ)ᵀ = R(−θ) on columns).
+std::array<double, 2> tile_exemplar_position(const TileReading& r, double x, double z) {
+  const double px = x + r.offset_x, pz = z + r.offset_z;
+  if (!r.rotated) return {px, pz};
+  return {r.cos * px + r.sin * pz, -r.sin * px + r.cos * pz};
+}
+
 std::array<TileReading, 3> tile_readings(const Tiling& tiling, double x, double z) {
   const GridTriangle triangle = grid_triangle(tiling.edge, x, z);
   const BlendWeights w = variance_preserving_weights(triangle);
@@ -101,11 +108,8 @@ std::array<TileReading, 3> tile_readings(const Tiling& tiling, double x, double 
   for (std::size_t v = 0; v < 3; ++v) {
     TileReading& r = out[v];
     const std::array<double, 2> h = tile_offset(tiling.seed, triangle.vertices[v], tiling.period);
-    const double px = x + h[0], pz = z + h[1];
     r.offset_x = h[0];
     r.offset_z = h[1];
-    r.x = px;
-    r.z = pz;
     if (tiling.flow.kind != FlowKind::none) {
       const std::array<double, 2> c = tile_centre(tiling.edge, triangle.vertices[v]);
       const double theta = flow_angle(tiling.flow, tiling.wind_angle, c[0], c[1]);
@@ -113,11 +117,11 @@ std::array<TileReading, 3> tile_readings(const Tiling& tiling, double x, double 
         r.rotated = true;
         r.cos = math::cos(theta);
         r.sin = math::sin(theta);
-        // R(−θ)(x + h) (Lutz eq. 8, whose row vectors times R(θ) are R(θ)ᵀ = R(−θ) on columns).
-        r.x = r.cos * px + r.sin * pz;
-        r.z = -r.sin * px + r.cos * pz;
       }
     }
+    const std::array<double, 2> e = tile_exemplar_position(r, x, z);
+    r.x = e[0];
+    r.z = e[1];
     r.weight = w.weight[v];
     r.dw_dx = w.gradient[v][0];
     r.dw_dz = w.gradient[v][1];

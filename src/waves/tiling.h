@@ -108,6 +108,9 @@ struct TileReading {
   double dw_dx = 0.0, dw_dz = 0.0;
 };
 std::array<TileReading, 3> tile_readings(const Tiling& tiling, double x, double z);
+// Where a tile (its offset and turn) reads the exemplar for the point (x, z): R(−θ)(x + h); the
+// reading's own x, z for its point (conformance/lean_study.h moves a footprint's points into it).
+std::array<double, 2> tile_exemplar_position(const TileReading& reading, double x, double z);
 
 // Adds one tile's raw sums (PointFields::raw and ddz_dx, read at the tile's exemplar position,
 // before finish_combination) to the blend (Lutz eq. 6 and 8 with μ = 0, the mean of every field
