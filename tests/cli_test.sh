@@ -41,8 +41,9 @@ expect() {
 # --- help is true and exits 0 -------------------------------------------------------------
 expect 0 'spectrum' --help
 expect 0 '--moments' spectrum --help
-for flag in --model --wind-speed --fetch --depth --spreading --swell --spread-blend \
-  --wind-direction-deg --dispersion --gamma --omega --theta-deg --wavevector --moments; do
+for flag in --model --wind-speed --fetch --depth --spreading --swell --swell-model --spread-blend \
+  --wind-direction-deg --dispersion --gamma --capillary-wavenumber --omega --theta-deg \
+  --wavevector --moments; do
   grep -q -- "$flag" "$tmp/out" || fail "spectrum --help does not list $flag"
 done
 
@@ -98,6 +99,15 @@ expect 2 "^oceanref: --tma-attenuation: expected exact or thompson-vincent; got 
   spectrum --model tma --depth 20 --tma-attenuation kitaigorodskii --omega 1
 expect 2 '--swell.*\[0, 1\]' spectrum --model jonswap --swell 2 --omega 1
 expect 2 '--gamma.*\[1, 20\]' spectrum --model jonswap --gamma 0.5 --omega 1
+expect 2 "^oceanref: --swell-model: expected lutz or alimardanov; got 'horvath'$" \
+  spectrum --model jonswap --swell 0.5 --swell-model horvath --omega 1
+expect 2 '--swell-model: has no effect with --swell 0' spectrum --model jonswap --swell-model lutz --omega 1
+expect 2 '--swell-model: has no effect with --spread-blend 0' \
+  spectrum --model jonswap --swell 0.5 --spread-blend 0 --swell-model alimardanov --omega 1
+expect 2 '--capillary-wavenumber.*\[1, 10000\] rad/m' \
+  spectrum --model jonswap --dispersion capillary --capillary-wavenumber 0.5 --omega 1
+expect 2 '--capillary-wavenumber: has no effect here.*--dispersion capillary' \
+  spectrum --model jonswap --capillary-wavenumber 200 --omega 1
 expect 2 '--omega.*finite number' spectrum --model jonswap --omega 1,nan
 expect 2 '--omega.*finite number' spectrum --model jonswap --omega 1,,2
 expect 2 '--wavevector.*kx:kz' spectrum --model jonswap --wavevector 1:2,3
@@ -107,6 +117,37 @@ expect 2 '--model' spectrum --omega 1
 expect 2 '--bogus' spectrum --model jonswap --bogus --omega 1
 expect 2 "unknown subcommand 'frobnicate'" frobnicate
 expect 2 'subcommand' # no arguments at all
+
+# --- spectrum flags change the numbers by the amount their formula says ----------------------
+# --swell-model (FORMULAS item 9): with mastin spreading (s independent of the wind) and ω_p = 1,
+# D(90°)/D(0°) = cos²ˢ(45°) = 2^−s gives s; alimardanov − lutz = 16ξ²(tanh r − tanh(1/r)),
+# at ξ = 0.5, r = 2: 4(tanh 2 − tanh 0.5) = 2.0076416912632285 (by hand); at r = 1 both 4 tanh 1.
+spread_of() { # ARGS... -> s at omega = 1 and 2, one per line
+  "$bin" spectrum --model jonswap --peak-omega 1 --spreading mastin --swell 0.5 "$@" \
+    --omega 1,2 --theta-deg 0,90 | awk -F, 'NR > 1 { d[$1, $2] = $4 }
+      END { for (w = 1; w <= 2; w++) printf "%.17g\n", -log(d[w, 90] / d[w, 0]) / log(2) }'
+}
+checks=$((checks + 1))
+paste <(spread_of) <(spread_of --swell-model alimardanov) |
+  awk '{ d = $2 - $1 } NR == 1 && d != 0 { bad = 1 }
+       NR == 2 { e = d - 2.0076416912632285; if (e < 0) e = -e; if (e > 1e-9) bad = 1 }
+       END { exit bad }' || fail "--swell-model alimardanov does not add 4(tanh 2 - tanh 0.5) to s"
+checks=$((checks + 1))
+cmp -s <(spread_of) <(spread_of --swell-model lutz) || fail "--swell-model lutz is not the default"
+# --capillary-wavenumber: Θ(k, 0) of pierson-moskowitz (α = 0.0081, ω_p = 1) with normalized cos2
+# spreading is S(ω) c_g / (πk) with ω² = gk(1 + (k/k_m)²), c_g = g(1 + 3(k/k_m)²)/(2ω),
+# S = αg²ω⁻⁵ exp(−1.25 ω⁻⁴): computed here in awk at k = 50, k_m = 100.
+checks=$((checks + 1))
+"$bin" spectrum --model pierson-moskowitz --alpha 0.0081 --peak-omega 1 --spreading cos2 \
+  --dispersion capillary --capillary-wavenumber 100 --wavevector 50:0 |
+  awk -F, 'NR == 2 { g = 9.81; k = 50; r = k / 100; w = sqrt(g * k * (1 + r * r));
+    cg = g * (1 + 3 * r * r) / (2 * w); s = 0.0081 * g * g / w^5 * exp(-1.25 / w^4);
+    want = s * cg / (3.141592653589793 * k); e = ($3 - want) / want; if (e < 0) e = -e;
+    exit !(e < 1e-12) }' || fail "--capillary-wavenumber 100: Theta(50, 0) is not the hand value"
+checks=$((checks + 1))
+cmp -s <("$bin" spectrum --model unified --wavevector 300:0) \
+  <("$bin" spectrum --model unified --capillary-wavenumber 370 --wavevector 300:0) ||
+  fail "--capillary-wavenumber 370 is not the default"
 
 # --- fields: scene validation, EXR output, point comparison ------------------------------------
 cat >"$tmp/scene.json" <<'JSON'
@@ -294,6 +335,70 @@ awk -F, '/^pixel_error_p50/ { p50 = $2 } /^pixel_error_p99/ { p99 = $2 } /^pixel
 expect 0 '^pixel_sha256' render "$tmp/render.json" -o "$tmp/pe1.exr" --spp 1 --threads 2
 checks=$((checks + 1))
 grep -q '^pixel_error' "$tmp/out" && fail "render --spp 1 printed a pixel error it cannot estimate"
+
+# Sequences (render --frames): each frame the same bytes as the frame alone; the frame's time and
+# the adaptation state in the EXR; the preview tone-mapped with Krawczyk's adapted luminance.
+cat >"$tmp/seq.json" <<'JSON'
+{"seed": 3, "time": 1.0,
+ "waves": {"spectrum": {"wind_speed": 14}, "cascades": {"sizes": [60, 17]}, "resolution": 32,
+           "choppiness": -2.5, "foam": {"decay": 2, "time_step": 0.1, "steps": "steady"}},
+ "camera": {"position": [0, 8, 0], "look_at": [0, 0, 40]},
+ "grid": {"columns": 64, "rows": 64},
+ "shading": {"whitecaps": true, "accuracy": "fast", "sky_order": 2, "sun_order": 1},
+ "render": {"width": 32, "height": 18, "samples_per_pixel": 1}}
+JSON
+expect 0 '^frame,2$' render "$tmp/seq.json" -o "$tmp/seq_##.exr" --png "$tmp/seq_##.png" --frames 0:2 --fps 10 --threads 2
+[ "$(grep -c '^frame,' "$tmp/out")" -eq 3 ] || fail "render --frames 0:2 did not report 3 frames"
+# Progress goes to a terminal only: under script(1) the log names each frame and the time left.
+script -qec "'$bin_path' render '$tmp/seq.json' -o '$tmp/tty_##.exr' --frames 0:2 --fps 10" /dev/null >"$tmp/tty" 2>&1
+grep -q 'frame 2 (3 of 3, t = 1.2 s, about [0-9]* s left)' "$tmp/tty" ||
+  fail "render --frames: no progress with the time left: $(cat "$tmp/tty")"
+expect 0 '^frame,2$' render "$tmp/seq.json" -o "$tmp/alone_##.exr" --png "$tmp/alone_##.png" --frames 2 --fps 10 --threads 1
+cmp -s "$tmp/seq_02.exr" "$tmp/alone_02.exr" || fail "frame 2 of a sequence differs from frame 2 alone (EXR)"
+cmp -s "$tmp/seq_02.png" "$tmp/alone_02.png" || fail "frame 2 of a sequence differs from frame 2 alone (PNG)"
+cmp -s "$tmp/seq_01.exr" "$tmp/seq_02.exr" && fail "frames 1 and 2 are the same image"
+# Frame 2 is the scene at time 1.2 (1 + 2/10): the same pixels as a render of that scene, whose
+# foam is the same function of time.
+sed 's/"time": 1.0/"time": 1.2/' "$tmp/seq.json" >"$tmp/seq_t.json"
+expect 0 '^pixel_sha256' render "$tmp/seq_t.json" -o "$tmp/seq_t.exr" --threads 2
+grep -q "$(grep '^pixel_sha256' "$tmp/out")" <("$bin" render "$tmp/seq.json" -o "$tmp/again_##.exr" --frames 2 --fps 10 2>/dev/null) ||
+  fail "frame 2 at 10 fps is not the scene at time 1.2"
+/usr/bin/python3 - "$tmp/seq_00.exr" "$tmp/seq_01.exr" "$tmp/seq_02.exr" "$tmp/seq_02.png" <<'PY' || fail "render --frames: frame attributes or adaptation wrong"
+import math, sys
+import OpenImageIO as oiio
+frames = [oiio.ImageInput.open(p).spec() for p in sys.argv[1:4]]
+la = None
+for k, spec in enumerate(frames):
+    a = lambda name: float(spec.getattribute("oceanref." + name))
+    assert int(spec.getattribute("oceanref.frame")) == k
+    assert a("frame_rate") == 10 and abs(a("frame_time") - (1 + k / 10)) < 1e-12
+    metered = a("metered_luminance")
+    # Krawczyk eq. 5-7: L_a <- L_a + (Lw - L_a)(1 - exp(-dt/tau(L_a))), tau = s*0.4 + (1-s)*0.1.
+    if la is None:
+        la = metered
+    else:
+        s = 0.04 / (0.04 + la)
+        tau = s * 0.4 + (1 - s) * 0.1
+        la = la + (metered - la) * (1 - math.exp(-0.1 / tau))
+    assert abs(a("adapted_luminance") - la) <= 1e-12 * la, (a("adapted_luminance"), la)
+    key = 1.03 - 2 / (2 + math.log10(la + 1))  # eq. 12
+    assert abs(a("tone_key") - key) < 1e-12, (a("tone_key"), key)
+png = oiio.ImageInput.open(sys.argv[4]).spec()
+assert (png.width, png.height) == (32, 18)
+PY
+expect 2 '--output: with --frames, a pattern with a run of' render "$tmp/seq.json" -o "$tmp/seq.exr" --frames 0:1
+expect 2 '--frames: expected A:B' render "$tmp/seq.json" -o "$tmp/s_#.exr" --frames 3:1
+expect 2 '--frames: expected A:B' render "$tmp/seq.json" -o "$tmp/s_#.exr" --frames -1:2
+expect 2 '--fps: only with --frames' render "$tmp/seq.json" -o "$tmp/s.exr" --fps 24
+expect 2 '--fps' render "$tmp/seq.json" -o "$tmp/s_#.exr" --frames 0:1 --fps 0
+expect 2 '--video: assembles the previews' render "$tmp/seq.json" -o "$tmp/s_#.exr" --frames 0:1 --video "$tmp/v.mp4"
+if command -v ffmpeg >/dev/null; then
+  expect 0 '^frame,1$' render "$tmp/seq.json" -o "$tmp/v_#.exr" --png "$tmp/v_#.png" --frames 0:1 --video "$tmp/v.mp4"
+  [ -s "$tmp/v.mp4" ] || fail "render --video wrote no video"
+else
+  expect 2 '--video: needs ffmpeg on PATH' render "$tmp/seq.json" -o "$tmp/v_#.exr" --png "$tmp/v_#.png" --frames 0:1 --video "$tmp/v.mp4"
+  [ ! -e "$tmp/v_0.exr" ] || fail "render --video without ffmpeg rendered before refusing"
+fi
 
 # Adaptive sampling (render.pixel_tolerance): the samples behind the pixels and the capped ones
 # reported; a cap below what the tolerance needs warns on stderr; the samples layer with --aov.

@@ -97,7 +97,7 @@ TEST_CASE("footprint filter: every level is the Gaussian-filtered spectrum, summ
   const Ocean ocean = realize_ocean(small_waves(), 1);
   const double time = 1.7;
   const FootprintFilter f =
-      make_footprint_filter(ocean, time, Interpolation::bicubic, ShadingNormals::surface, 2);
+      make_footprint_filter(ocean, time, Interpolation::bicubic, ShadingNormals::surface, false, 2);
   REQUIRE(f.radii.size() >= 4);
   CHECK(f.radii[0] == 0.0);
   CHECK(f.radii[1] == doctest::Approx(0.25 * 23.0 / 32.0));
@@ -134,7 +134,7 @@ TEST_CASE("footprint filter: V from the table against the sum over every mode, a
   const double time = 0.4;
   for (const ShadingNormals normals : {ShadingNormals::surface, ShadingNormals::high_resolution}) {
     const FootprintFilter f =
-        make_footprint_filter(ocean, time, Interpolation::bicubic, normals, 1);
+        make_footprint_filter(ocean, time, Interpolation::bicubic, normals, true, 1);
     // A point: nothing under it.
     const SlopeVariance none = footprint_slope_variance(f, Footprint{});
     CHECK(none.upwind == 0.0);
@@ -144,7 +144,9 @@ TEST_CASE("footprint filter: V from the table against the sum over every mode, a
     const SlopeVarianceBudget budget =
         slope_variance_budget(ocean, 0.0173, time, Interpolation::bicubic, normals);
     const Footprint huge{1e8, 0.0, 1e8};
-    const SlopeVariance all = footprint_slope_variance_exact(ocean, time, normals, f.radii, huge);
+    const FootprintResidual residual_all =
+        footprint_residual_exact(ocean, time, normals, f.radii, huge);
+    const SlopeVariance all = residual_all.slopes;
     CHECK(all.upwind == doctest::Approx(budget.discrete.upwind).epsilon(1e-9));
     CHECK(all.crosswind == doctest::Approx(budget.discrete.crosswind).epsilon(1e-9));
     const SlopeVariance table_all = footprint_slope_variance(f, huge);
@@ -154,7 +156,7 @@ TEST_CASE("footprint filter: V from the table against the sum over every mode, a
     // 12.9% and 11.8% for the two normals, at the most elongated footprints: the table has 16
     // directions over π; the BRDF's response to σ² is smooth, so this is a small share of the
     // filter's error against the converged pixel, ACCURACY.md).
-    double worst = 0.0;
+    double worst = 0.0, worst_jacobian = 0.0;
     const double total = budget.discrete.upwind + budget.discrete.crosswind;
     for (int i = 0; i < 60; ++i) {
       const double major = 0.3 * std::pow(2.0, 0.37 * i - 8.0);
@@ -163,16 +165,37 @@ TEST_CASE("footprint filter: V from the table against the sum over every mode, a
       const double c = std::cos(angle), s = std::sin(angle);
       const double a = major * major, b = a * ratio * ratio;
       const Footprint fp{a * c * c + b * s * s, (a - b) * c * s, a * s * s + b * c * c};
-      const SlopeVariance exact = footprint_slope_variance_exact(ocean, time, normals, f.radii, fp);
+      const FootprintResidual residual =
+          footprint_residual_exact(ocean, time, normals, f.radii, fp);
+      const SlopeVariance& exact = residual.slopes;
       const SlopeVariance table = footprint_slope_variance(f, fp);
       for (const auto& [e, t] :
            {std::pair{exact.upwind, table.upwind}, std::pair{exact.crosswind, table.crosswind}}) {
         if (e < 1e-3 * total) continue;
         worst = std::max(worst, std::fabs(t - e) / e);
       }
+      // The displacement gradient's moments, the same bins and reading: their slope-like sums
+      // (aaaa + 2aacc + cccc = u²-weighted slope variance) to the same 15%.
+      const JacobianMoments je = residual.jacobian, jt = footprint_jacobian_moments(f, fp);
+      const double e_sum = je.aaaa + 2.0 * je.aacc + je.cccc;
+      const double all_sum = residual_all.jacobian.aaaa + 2.0 * residual_all.jacobian.aacc +
+                             residual_all.jacobian.cccc;
+      if (e_sum >= 1e-3 * all_sum) {
+        worst_jacobian =
+            std::max(worst_jacobian, std::fabs(jt.aaaa + 2.0 * jt.aacc + jt.cccc - e_sum) / e_sum);
+      }
     }
-    MESSAGE("largest relative error of the footprint variance table: " << worst);
+    MESSAGE("largest relative error of the footprint variance table: "
+            << worst << ", Jacobian moments: " << worst_jacobian);
     CHECK(worst < 0.15);
+    CHECK(worst_jacobian < 0.15);
+    // Every mode's u²-weighted moments under the unbounded footprint: with one choppiness
+    // (small_waves) u² times the slope variances (aaaa + aacc along, aacc + cccc across).
+    const double u2 = ocean.cascades.front().choppiness * ocean.cascades.front().choppiness;
+    CHECK(residual_all.jacobian.aaaa + residual_all.jacobian.aacc ==
+          doctest::Approx(u2 * all.upwind).epsilon(1e-12));
+    CHECK(residual_all.jacobian.aacc + residual_all.jacobian.cccc ==
+          doctest::Approx(u2 * all.crosswind).epsilon(1e-12));
   }
 }
 

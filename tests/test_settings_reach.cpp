@@ -89,10 +89,15 @@ std::vector<Row> reach_rows() {
               ctx(R"({"waves": {"spectrum": {"model": "tma", "depth": 8}}})")),
       changes("waves.spectrum.phillips_suppression", 0.05, waves,
               ctx(R"({"waves": {"spectrum": {"model": "phillips"}}})")),
+      // k ≤ 2.5 rad/m here: (k/k_m)² changes ω(k) by ~1e-4 relative at t = 3 s.
+      changes("waves.spectrum.capillary_wavenumber", 200, waves,
+              ctx(R"({"waves": {"dispersion": "capillary"}})")),
       {"waves.spectrum.allow_extrapolation", true,
        ctx(R"({"waves": {"spectrum": {"fetch": 1000000}}})"), Effect::accepted},
       changes("waves.spreading.model", "cos2", waves),
       changes("waves.spreading.swell", 0.5, waves),
+      changes("waves.spreading.swell_model", "alimardanov", waves,
+              ctx(R"({"waves": {"spreading": {"swell": 0.5}}})")),
       changes("waves.spreading.spread_blend", 0.5, waves),
       changes("waves.spreading.printed", true, waves,
               ctx(R"({"waves": {"spreading": {"model": "cos2"}}})")),
@@ -158,6 +163,35 @@ std::vector<Row> reach_rows() {
       changes("atmosphere.sun_zenith_deg", 60, kPixels),
       changes("atmosphere.sun_azimuth_deg", 120, kPixels),
       changes("atmosphere.turbidity", 4, kPixels),
+      changes("shading.model", "four_term", kPixels),
+      changes("waves.model", "gerstner", kPixels | kFields),
+      changes("waves.gerstner.count", 32, kPixels, ctx(R"({"waves": {"model": "gerstner"}})")),
+      changes("waves.gerstner.direction_bins", 4, kPixels,
+              ctx(R"({"waves": {"model": "gerstner"}})")),
+      changes("waves.gerstner.min_wavelength", 2.0, kPixels,
+              ctx(R"({"waves": {"model": "gerstner"}})")),
+      changes("waves.gerstner.max_wavelength", 40.0, kPixels,
+              ctx(R"({"waves": {"model": "gerstner"}})")),
+      changes("shading.four_term.ambient_intensity", 0.9, kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.ambient_colour", json::array({0.3, 0.1, 0.1}), kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.air_bubble_density", 0.2, kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.air_bubble_colour", json::array({0.3, 0.3, 0.1}), kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.subsurface_height_intensity", 4, kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.subsurface_view_intensity", 3, kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.water_scattering_colour", json::array({0.1, 0.5, 0.2}), kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.specular_colour", json::array({0.5, 0.5, 1}), kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.shininess", 500, kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
+      changes("shading.four_term.reflection_intensity", 0.3, kPixels,
+              ctx(R"({"shading": {"model": "four_term"}})")),
       changes("shading.sun", false, kPixels),
       changes("shading.sky", false, kPixels),
       changes("shading.sea", false, kPixels),
@@ -219,6 +253,13 @@ std::vector<InertRow> inert_rows() {
       {"waves.spectrum.tma_attenuation", "thompson-vincent", json::object(), "tma spectrum only"},
       {"waves.spectrum.phillips_suppression", 0.05, json::object(), "phillips spectrum only"},
       {"waves.spectrum.allow_extrapolation", true, json::object(), "fitted range"},
+      {"waves.spectrum.capillary_wavenumber", 200, json::object(),
+       "capillary dispersion and the unified spectrum and spreading only"},
+      {"waves.spreading.swell", 0.5, ctx(R"({"waves": {"spreading": {"spread_blend": 0}}})"),
+       "spread_blend is 0"},
+      {"waves.spreading.swell_model", "alimardanov", json::object(), "swell is 0"},
+      {"waves.spreading.swell_model", "alimardanov",
+       ctx(R"({"waves": {"spreading": {"swell": 0.5, "spread_blend": 0}}})"), "spread_blend is 0"},
       {"waves.spreading.printed", true, json::object(), "not hasselmann"},
       {"waves.cascades.factor", "golden-small",
        ctx(R"({"waves": {"cascades": {"sizes": null, "largest": 60, "count": 1}}})"),
@@ -258,6 +299,20 @@ std::vector<InertRow> inert_rows() {
       {"shading.whitecap_threshold", 0.6, ctx(R"({"shading": {"whitecaps": false}})"),
        "whitecaps is false"},
       {"shading.sun_order", 4, ctx(R"({"shading": {"sun": false}})"), "shading.sun is false"},
+      {"shading.four_term.shininess", 500, json::object(), "shading.model is not four_term"},
+      {"waves.gerstner.count", 32, json::object(), "waves.model is not gerstner"},
+      {"waves.resolution", 32, ctx(R"({"waves": {"model": "gerstner"}})"),
+       "waves.model is gerstner"},
+      {"shading.interpolation", "bilinear", ctx(R"({"waves": {"model": "gerstner"}})"),
+       "waves.model is gerstner"},
+      {"shading.four_term.ambient_colour", json::array({0.3, 0.1, 0.1}), json::object(),
+       "shading.model is not four_term"},
+      {"shading.sea_colour", json::array({0.1, 0.3, 0.2}),
+       ctx(R"({"shading": {"model": "four_term"}})"), "shading.model is four_term"},
+      {"shading.fresnel", "schlick", ctx(R"({"shading": {"model": "four_term"}})"),
+       "shading.model is four_term"},
+      {"shading.sun_order", 4, ctx(R"({"shading": {"model": "four_term"}})"),
+       "shading.model is four_term"},
       {"shading.sky_order", 8, ctx(R"({"shading": {"sky": false, "sea": false}})"),
        "shading.sky and shading.sea are false"},
   };
@@ -282,7 +337,7 @@ void append(std::vector<std::uint8_t>& bytes, const T& v) {
 struct Outputs {
   std::string fields, pixels, foam;
   std::vector<UnusedKey> unused;
-  double foam_coverage = 0.0;  // the mean whitecap coverage of the image's sea pixels
+  double foam_coverage = 0.0;  // the share of the image's sea pixels with foam (see run)
 };
 
 // The outputs of a scene; realizations and results are cached (many rows share them).
@@ -325,10 +380,13 @@ class Pipeline {
       for (const double v : c) append(bytes, v);
     }
     out.pixels = sha256_hex(bytes);
-    double foamy = 0.0, sea = 0.0;
+    // W > 0 wherever the unresolved waves could fold (a tail of the normal): "foamy" is a pixel
+    // with at least a tenth of the foamiest one's foam.
+    double foamy = 0.0, sea = 0.0, most = 0.0;
     REQUIRE(image.foam.size() == image.coverage.size());
+    for (const Vec3& f : image.foam) most = std::max(most, f[0]);
     for (std::size_t i = 0; i < image.foam.size(); ++i) {
-      foamy += image.foam[i][0] > 0.0 ? 1.0 : 0.0;
+      foamy += image.foam[i][0] > 0.1 * most ? 1.0 : 0.0;
       sea += image.coverage[i] > 0.0 ? 1.0 : 0.0;
     }
     out.foam_coverage = sea > 0.0 ? foamy / sea : 0.0;

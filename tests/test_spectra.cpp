@@ -257,3 +257,82 @@ TEST_CASE("continuity at every branch point") {
     CHECK(relative(wavenumber_spectrum(ua, k), wavenumber_spectrum(ub, k)) < 1e-7);
   }
 }
+
+TEST_CASE("capillary k_m: the dispersion, its phase- and group-speed minima follow the setting") {
+  // ω² = gk(1 + (k/k_m)²) (Alimardanov eq. 2.9 with h = ∞, Gamper §3.4) at k_m = 100 rad/m.
+  SpectrumSettings in;
+  in.dispersion = DispersionKind::capillary;
+  in.capillary_wavenumber = 100.0;
+  const Spectrum s = make_spectrum(in);
+  CHECK(s.dispersion.capillary_wavenumber == 100.0);
+  // By hand: k = 50: ω² = 9.81·50·1.25 = 613.125, ω = 24.761361028828767 rad/s.
+  CHECK(relative(angular_frequency(s.dispersion, 50.0), 24.761361028828767) < 1e-15);
+  // c² = g/k + gk/k_m² has d(c²)/dk = −g/k² + g/k_m² = 0 at k = k_m: c_min = √(2g/k_m)
+  // = √0.1962 = 0.44294469180700202 m/s; there c_g = c + k dc/dk = c as well.
+  const double c_min = 0.44294469180700202;
+  CHECK(relative(phase_speed(s.dispersion, 100.0), c_min) < 1e-15);
+  CHECK(relative(group_velocity(s.dispersion, 100.0), c_min) < 1e-15);
+  CHECK(phase_speed(s.dispersion, 100.0) < phase_speed(s.dispersion, 99.0));
+  CHECK(phase_speed(s.dispersion, 100.0) < phase_speed(s.dispersion, 101.0));
+  // c_g² ∝ (1 + 3r²)²/(r(1 + r²)), r = k/k_m, is least where 3r⁴ + 6r² − 1 = 0:
+  // r² = 2/√3 − 1, k = 39.331989319032864 rad/m (not k_m/√3 = 57.7).
+  const double k_g = 39.331989319032864;
+  CHECK(group_velocity(s.dispersion, k_g) < group_velocity(s.dispersion, 0.99 * k_g));
+  CHECK(group_velocity(s.dispersion, k_g) < group_velocity(s.dispersion, 1.01 * k_g));
+  // Against the default k_m = 370: ω changes by √((1 + (k/100)²)/(1 + (k/370)²)).
+  in.capillary_wavenumber = 370.0;
+  const Spectrum d = make_spectrum(in);
+  for (const double k : {0.5, 20.0, 300.0}) {
+    const double ratio = std::sqrt((1.0 + k * k / 1e4) / (1.0 + k * k / (370.0 * 370.0)));
+    CHECK(relative(angular_frequency(s.dispersion, k) / angular_frequency(d.dispersion, k), ratio) <
+          1e-14);
+  }
+  // k_m is read by the capillary dispersion and the Unified spectrum and spreading only.
+  SpectrumSettings deep;
+  CHECK_FALSE(capillary_wavenumber_used(deep));
+  CHECK(capillary_wavenumber_used(in));
+  deep.spreading = SpreadingModel::unified;
+  CHECK(capillary_wavenumber_used(deep));
+  deep.spreading.reset();
+  deep.model = SpectrumModel::unified;
+  deep.dispersion = DispersionKind::deep;
+  CHECK(capillary_wavenumber_used(deep));
+}
+
+TEST_CASE("capillary k_m: the Unified c_m = 0.23 sqrt(370/k_m) and its capillary peak move") {
+  SpectrumSettings in;
+  in.model = SpectrumModel::unified;
+  in.fetch = 1.0e6;
+  // The default is Gamper's published c_m exactly (bit-identical spectra at k_m = 370).
+  CHECK(make_spectrum(in).unified.min_phase_speed == 0.23);
+  in.capillary_wavenumber = 92.5;  // 370/92.5 = 4
+  CHECK(make_spectrum(in).unified.min_phase_speed == 0.46);
+  // c_m is the minimum phase speed of the dispersion at k_m: √(2g/k_m) = 0.2303 at 370,
+  // 0.4606 at 92.5 — the published 0.23 scaled, to its 2 digits.
+  CHECK(std::fabs(make_spectrum(in).unified.min_phase_speed - std::sqrt(2.0 * kGravity / 92.5)) <
+        0.002);
+  // The gravity-capillary maximum of the curvature k³Ψ follows k_m (1.0025 k_m on this 1% grid).
+  const auto curvature_peak = [](double k_m) {
+    SpectrumSettings u;
+    u.model = SpectrumModel::unified;
+    u.fetch = 1.0e6;
+    u.capillary_wavenumber = k_m;
+    const Spectrum s = make_spectrum(u);
+    double best_k = 0.0;
+    double best = 0.0;
+    for (double k = 0.2 * k_m; k < 8.0 * k_m; k *= 1.01) {
+      const double curvature = k * k * k * wavenumber_spectrum(s, k);
+      if (curvature > best) {
+        best = curvature;
+        best_k = k;
+      }
+    }
+    return best_k;
+  };
+  for (const double k_m : {200.0, 370.0, 1000.0}) {
+    CAPTURE(k_m);
+    const double peak = curvature_peak(k_m);
+    CHECK(peak > 0.95 * k_m);
+    CHECK(peak < 1.05 * k_m);
+  }
+}

@@ -173,3 +173,80 @@ TEST_CASE("unified spreading: centrosymmetric, 1 + Delta cos 2theta, Delta in (0
     CHECK(delta <= 1.0);  // tanh saturates to 1 in double far from the peak
   }
 }
+
+TEST_CASE("swell models: Lutz eq. 29 and Alimardanov Algorithm 2 against the printed formulas") {
+  // Alimardanov: Δs = 16 tanh(min(ω/ω_p, 20)) ξ²; by hand at ξ = 0.5 (16ξ² = 4):
+  // 4 tanh(0.5) = 1.848468629040039, 4 tanh(2) = 3.8561103203032675, 4 tanh(20) = 4 in double.
+  CHECK(alimardanov_swell_spread(0.5, 1.0, 0.5) ==
+        doctest::Approx(1.848468629040039).epsilon(1e-15));
+  CHECK(alimardanov_swell_spread(2.0, 1.0, 0.5) ==
+        doctest::Approx(3.8561103203032675).epsilon(1e-15));
+  CHECK(alimardanov_swell_spread(1e9, 1.0, 0.5) == doctest::Approx(4.0).epsilon(1e-15));
+  CHECK(alimardanov_swell_spread(0.0, 1.0, 0.5) == 0.0);
+  CHECK(alimardanov_swell_spread(2.0, 1.0, 0.0) == 0.0);
+  // Lutz eq. 29 has the ratio the other way round: the two mirror each other in ω/ω_p ↔ ω_p/ω.
+  CHECK(horvath_swell_spread(0.5, 1.0, 0.5) == doctest::Approx(3.8561103203032675).epsilon(1e-15));
+  CHECK(horvath_swell_spread(2.0, 1.0, 0.5) == doctest::Approx(1.848468629040039).epsilon(1e-15));
+
+  // Through the spectrum: s = s_Hasselmann + Δs, D = Q(s)|cos(θ/2)|^{2s} with
+  // Q(s) = 2^{2s−1}/π Γ²(s+1)/Γ(2s+1) (Alimardanov eq. 2.19–2.20), evaluated here with tgamma.
+  SpectrumSettings in;
+  in.model = SpectrumModel::jonswap;
+  in.spreading = SpreadingModel::hasselmann;
+  in.swell = 0.6;
+  in.swell_model = SwellModel::alimardanov;
+  const Spectrum s = make_spectrum(in);
+  in.swell_model = SwellModel::lutz;
+  const Spectrum lutz = make_spectrum(in);
+  const double wp = s.peak_frequency;
+  // r = 0.5: Hasselmann s = 6.97·0.5^4.06; 16·0.36·tanh(0.5) = 2.6617948258176562.
+  const double s_low = 6.97 * std::pow(0.5, 4.06) + 2.6617948258176562;
+  CHECK(cos_2s_spread(s, 0.5 * wp) == doctest::Approx(s_low).epsilon(1e-14));
+  const double q = std::pow(2.0, 2.0 * s_low - 1.0) / kPi * std::tgamma(s_low + 1.0) *
+                   std::tgamma(s_low + 1.0) / std::tgamma(2.0 * s_low + 1.0);
+  for (const double theta : {0.0, 0.7, 2.0}) {
+    const double expected = q * std::pow(std::cos(0.5 * theta), 2.0 * s_low);
+    CHECK(spreading_at_frequency(s, 0.5 * wp, theta) == doctest::Approx(expected).epsilon(1e-12));
+  }
+  // At ω = ω_p both forms give 16 tanh(1) ξ² (the same bits); elsewhere they differ.
+  CHECK(cos_2s_spread(s, wp) == cos_2s_spread(lutz, wp));
+  for (const double r : {0.3, 0.8, 1.5, 4.0}) {
+    CAPTURE(r);
+    CHECK(cos_2s_spread(s, r * wp) - cos_2s_spread(lutz, r * wp) ==
+          doctest::Approx(16.0 * 0.36 * (std::tanh(r) - std::tanh(1.0 / r))).epsilon(1e-12));
+  }
+  // The default is Lutz's form: unchanged output when the model is not chosen.
+  in = SpectrumSettings{};
+  in.swell = 0.6;
+  const Spectrum unset = make_spectrum(in);
+  for (const double r : {0.3, 1.0, 3.0}) {
+    CHECK(spreading_at_frequency(unset, r * unset.peak_frequency, 0.4) ==
+          spreading_at_frequency(lutz, r * lutz.peak_frequency, 0.4));
+  }
+}
+
+TEST_CASE("swell models: every cos-2s spreading with Alimardanov's swell integrates to 1") {
+  // As the normalization test above, for the other swell form (quadrature error ≤ 1e−13).
+  for (const SpreadingModel m : kAll) {
+    if (!is_cos_2s_family(m)) continue;
+    for (const double swell : {0.5, 1.0}) {
+      for (const double blend : {1.0, 0.5}) {
+        SpectrumSettings in;
+        in.model = SpectrumModel::pierson_moskowitz;
+        in.spreading = m;
+        in.swell = swell;
+        in.swell_model = SwellModel::alimardanov;
+        in.spread_blend = blend;
+        in.wind_direction = -1.1;
+        const Spectrum s = make_spectrum(in);
+        for (const double r : {0.05, 0.5, 1.0, 2.0, 19.0, 25.0}) {
+          CAPTURE(to_string(m));
+          CAPTURE(swell);
+          CAPTURE(blend);
+          CAPTURE(r);
+          CHECK(std::fabs(integral_over_theta(s, r * s.peak_frequency) - 1.0) < 1e-9);
+        }
+      }
+    }
+  }
+}

@@ -33,6 +33,7 @@ double number(const std::string& key, const py::handle& value) {
 
 const char* const kKeywords =
     "wind_speed, fetch, depth, gravity, wind_direction_deg, spreading, dispersion, swell, "
+    "swell_model, "
     "spread_blend, gamma, alpha, peak_frequency, sigma_low, sigma_high, pm_wind, "
     "tma_attenuation, phillips_suppression, capillary_wavenumber, printed_spreading, "
     "allow_extrapolation";
@@ -65,6 +66,8 @@ SpectrumSettings settings_from(const std::string& model_name, const py::kwargs& 
       s.dispersion = parse_choice<ArgumentError>(kDispersionKinds, key, hyphenated(text()));
     } else if (key == "swell") {
       s.swell = number(key, value);
+    } else if (key == "swell_model") {
+      s.swell_model = parse_choice<ArgumentError>(kSwellModels, key, text());
     } else if (key == "spread_blend") {
       s.spread_blend = number(key, value);
     } else if (key == "gamma") {

@@ -56,6 +56,16 @@ def test_spectrum_equals_the_command_line(cli):
     theta = oceanref.Theta("jonswap", [float(r["kx"]) for r in rows],
                            [float(r["kz"]) for r in rows], wind_speed=14)
     assert np.array_equal(theta, [float(r["Theta"]) for r in rows])
+    # Alimardanov's swell form (Algorithm 2) as the command line has it, and not Lutz's.
+    out = cli("spectrum", "--model", "jonswap", "--wind-speed", "14", "--spreading", "hasselmann",
+              "--swell", "0.8", "--swell-model", "alimardanov", "--wavevector",
+              "0.05:0.01,-0.02:0.03,0.3:-0.2")
+    rows = csv_rows(out)
+    kx, kz = [float(r["kx"]) for r in rows], [float(r["kz"]) for r in rows]
+    kw = dict(wind_speed=14, spreading="hasselmann", swell=0.8)
+    theta = oceanref.Theta("jonswap", kx, kz, swell_model="alimardanov", **kw)
+    assert np.array_equal(theta, [float(r["Theta"]) for r in rows])
+    assert not np.array_equal(theta, oceanref.Theta("jonswap", kx, kz, **kw))
     out = cli("spectrum", "--model", "tma", "--depth", "20", "--moments")
     m = oceanref.moments("tma", depth=20)
     row = csv_rows(out)[0]

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -17,6 +19,7 @@
 
 #include "cli/text.h"
 #include "conformance/render_output.h"
+#include "conformance/sequence.h"
 #include "io/exr.h"
 #include "io/output_file.h"
 #include "scene/scene.h"
@@ -106,6 +109,24 @@ void print_report(std::ostream& out, const RenderReport& r, const Scene& scene,
   }
 }
 
+// A Gerstner ocean's loops (gerstner_loop_check): the bound, and where it is ≥ 1 what a lattice
+// below the camera shows, with a warning when the surface folds there.
+void print_gerstner_loops(std::ostream& out, const Scene& scene) {
+  const GerstnerLoopCheck c = gerstner_loop_check(scene, realize_ocean(scene.waves, 1));
+  out << "gerstner_steepness_bound," << format_number(c.steepness_bound) << '\n';
+  if (!c.sampled) return;
+  out << "gerstner_min_jacobian," << format_number(c.loops.min_jacobian) << '\n';
+  out << "gerstner_folded_fraction," << format_number(c.loops.folded_fraction) << '\n';
+  if (c.loops.min_jacobian < 0.0) {
+    warn("oceanref",
+         "the Gerstner waves loop (|u| sum k A = " + format_number(c.steepness_bound) +
+             " >= 1): det J < 0 on " + format_number(100.0 * c.loops.folded_fraction) + "% of a " +
+             format_number(c.extent) + " m square below the camera (lowest " +
+             format_number(c.loops.min_jacobian) + " at x = " + format_number(c.loops.min_x) +
+             ", z = " + format_number(c.loops.min_z) + "); lower waves.choppiness");
+  }
+}
+
 // A progress bar on stderr with the time left, extrapolated from the share done so far (rows of
 // sea cost more than rows of sky, so the estimate settles once the horizon is passed). Called
 // from worker threads: the bar is drawn under a lock.
@@ -140,9 +161,107 @@ std::function<void(double)> progress_bar() {
 }
 }  // namespace
 
+// --frames A:B (or K): the first and last frame, 0 <= A <= B <= kMaxFrame.
+std::pair<int, int> parse_frames(const std::string& text) {
+  const auto refuse = [&] {
+    return UsageError("--frames", "expected A:B (or K) with integers 0 <= A <= B <= " +
+                                      std::to_string(kMaxFrame) + ", got '" + escape_value(text) +
+                                      "'");
+  };
+  const auto integer = [&](const std::string& part) {
+    if (part.empty() || part.size() > 7 ||
+        part.find_first_not_of("0123456789") != std::string::npos) {
+      throw refuse();
+    }
+    const int v = std::stoi(part);
+    if (v > kMaxFrame) throw refuse();
+    return v;
+  };
+  const std::size_t colon = text.find(':');
+  const int first = integer(text.substr(0, colon));
+  const int last = colon == std::string::npos ? first : integer(text.substr(colon + 1));
+  if (last < first) throw refuse();
+  return {first, last};
+}
+
+// The folders of PATH hold an executable `name`.
+bool on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return false;
+  std::string folders = path;
+  for (std::size_t start = 0; start <= folders.size();) {
+    const std::size_t end = std::min(folders.find(':', start), folders.size());
+    const std::string file = folders.substr(start, end - start) + "/" + name;
+    if (end > start && access(file.c_str(), X_OK) == 0) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+// `render --frames`: each frame k of [first, last] to the --output (and --png) pattern, its
+// report lines after a line "frame,k"; progress with the time left over the frames.
+void render_sequence(std::ostream& out, const Scene& scene, const RenderOutputOptions& base,
+                     const std::string& output, const std::string& png, std::pair<int, int> frames,
+                     double fps, const std::vector<std::string>& inputs) {
+  const auto [first, last] = frames;
+  const std::vector<SequenceFrame> adaptation =
+      adaptation_through(scene, last, fps, base.threads, base.log);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = first; k <= last; ++k) {
+    const int done = k - first, count = last - first + 1;
+    std::string eta;
+    if (done > 0) {
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      eta = ", about " + std::to_string(std::lround(elapsed / done * (count - done))) + " s left";
+    }
+    log_progress("frame " + std::to_string(k) + " (" + std::to_string(done + 1) + " of " +
+                 std::to_string(count) + ", t = " +
+                 format_number(adaptation[static_cast<std::size_t>(k)].time) + " s" + eta + ")");
+    RenderOutputOptions options = base;
+    options.frame = adaptation[static_cast<std::size_t>(k)];
+    if (base.progress) options.progress = progress_bar();  // a bar per frame
+    const std::string exr = frame_path(output, k);
+    const std::string preview = png.empty() ? std::string() : frame_path(png, k);
+    check_output_paths({{"--output", exr}, {"--png", preview}}, inputs);
+    const Scene s = frame_scene(scene, k, fps);
+    out << "frame," << k << '\n';
+    print_report(out, render_scene_to_files(s, options, exr, preview), s, options);
+  }
+}
+
+// `render --video`: the previews of frames [first, last] assembled by ffmpeg into `video`,
+// written under a temporary name and renamed (no partial file).
+void assemble_video(const std::string& png, std::pair<int, int> frames, double fps,
+                    const std::string& video) {
+  const std::filesystem::path target(video);
+  const std::filesystem::path temporary =
+      target.parent_path() /
+      (".oceanref-" + target.stem().string() + ".partial" + target.extension().string());
+  const auto quote = [](const std::string& text) {
+    std::string q = "'";
+    for (const char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  const std::string command = "ffmpeg -y -loglevel error -framerate " + format_number(fps) +
+                              " -start_number " + std::to_string(frames.first) + " -i " +
+                              quote(ffmpeg_pattern(png)) + " -frames:v " +
+                              std::to_string(frames.second - frames.first + 1) +
+                              " -c:v libx264 -pix_fmt yuv420p -vf pad=ceil(iw/2)*2:ceil(ih/2)*2 " +
+                              quote(temporary.string());
+  log_progress("assembling " + video + " with ffmpeg");
+  if (std::system(command.c_str()) != 0) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error("ffmpeg failed to assemble " + video + " (command: " + command + ")");
+  }
+  std::filesystem::rename(temporary, target);
+}
+
 std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
   struct Flags {
-    std::string scene, output, png, max_memory, tile, samples, renderer;
+    std::string scene, output, png, max_memory, tile, samples, renderer, frames, video;
+    double fps = 0.0;
     int threads = 0;
     int spp = 0;
     bool aov = false;
@@ -187,6 +306,18 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
                   "reflects objects); README, 'Two renderers'; default: the scene's "
                   "render.renderer (raster); not with --tile");
   cmd->add_option("--max-memory", f->max_memory, kMaxMemoryHelp);
+  cmd->add_option("--frames", f->frames,
+                  "A:B (or K): render frames A to B of an animated sequence, frame k at the "
+                  "scene's time + k/fps, each to --output (and --png) with the last run of '#' "
+                  "replaced by k (ocean_####.exr); every frame is the same bytes as the frame "
+                  "rendered alone (foam and the preview's temporal adaptation are replayed from "
+                  "frame 0: README, 'Sequences'); 0 <= A <= B <= " +
+                      std::to_string(kMaxFrame));
+  cmd->add_option("--fps", f->fps, "frames per second of --frames (default 30)")
+      ->check(CLI::Range(1e-3, kMaxFrameRate));
+  cmd->add_option("--video", f->video,
+                  "OUT.mp4: with --frames and --png, also assemble the previews into an H.264 "
+                  "video with ffmpeg (which must be installed: Debian package ffmpeg)");
   cmd->add_option("--tile", f->tile,
                   "I/N: render only tile I of N (pixel rows I*H/N to (I+1)*H/N - 1, 0 <= I < N "
                   "<= H) and write it to --output as a render piece, for `oceanref merge` "
@@ -210,6 +341,32 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     if (!f->tile.empty() && !f->samples.empty()) {
       throw UsageError("--samples", "not with --tile (render the whole image)");
     }
+    if (f->frames.empty()) {
+      if (f->fps != 0.0) throw UsageError("--fps", "only with --frames");
+      if (!f->video.empty()) throw UsageError("--video", "only with --frames");
+    } else {
+      for (const auto& [flag, given] :
+           {std::pair{"--tile", !f->tile.empty()}, std::pair{"--samples", !f->samples.empty()}}) {
+        if (given) throw UsageError(flag, "not with --frames");
+      }
+      for (const auto& [flag, path] :
+           {std::pair{"--output", f->output}, std::pair{"--png", f->png}}) {
+        if (!path.empty() && path.find('#') == std::string::npos) {
+          throw UsageError(flag,
+                           "with --frames, a pattern with a run of '#' for the frame number "
+                           "(e.g. ocean_####.exr), got '" +
+                               escape_value(path) + "'");
+        }
+      }
+      if (!f->video.empty() && f->png.empty()) {
+        throw UsageError("--video", "assembles the previews: give --png too");
+      }
+      if (!f->video.empty() && !on_path("ffmpeg")) {
+        throw UsageError("--video", "needs ffmpeg on PATH (Debian: apt-get install ffmpeg)");
+      }
+    }
+    const std::pair<int, int> frames =
+        f->frames.empty() ? std::pair{0, 0} : parse_frames(f->frames);
     const Scene scene = load_scene(f->scene);
     if (options.tiles > scene.image.height) {
       throw UsageError("--tile", "N must be <= the image's " + std::to_string(scene.image.height) +
@@ -238,9 +395,16 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
                        "sampling)");
     }
     options.streamed = true;
+    if (!f->frames.empty()) {
+      const double fps = f->fps == 0.0 ? 30.0 : f->fps;
+      render_sequence(out, scene, options, f->output, f->png, frames, fps, {f->scene});
+      if (!f->video.empty()) assemble_video(f->png, frames, fps, f->video);
+      return;
+    }
     options.keep_samples = !f->samples.empty();
     print_report(out, render_scene_to_files(scene, options, f->output, f->png, f->samples), scene,
                  options);
+    if (scene.waves.model == WaveModel::gerstner) print_gerstner_loops(out, scene);
   };
 }
 

@@ -23,7 +23,8 @@ struct SpectrumFlags {
   std::string model, wind_speed = "10", fetch = "100000", depth = "inf", spreading, swell = "0",
                      spread_blend = "1", wind_direction = "0", dispersion, gamma, alpha, peak_omega,
                      sigma_low, sigma_high, pm_wind = "u10", tma_attenuation = "exact",
-                     suppression = "0.001", gravity = "9.81", k_max, omega, theta, wavevector;
+                     suppression = "0.001", gravity = "9.81", k_max, omega, theta, wavevector,
+                     swell_model, capillary_wavenumber;
   bool moments = false;
   bool printed = false;
   bool allow_extrapolation = false;
@@ -44,7 +45,8 @@ std::string flag_for(const std::string& key) {
       {"peak_frequency", "--peak-omega"},
       {"sigma_low", "--sigma-low"},
       {"sigma_high", "--sigma-high"},
-      {"phillips_suppression", "--phillips-suppression"}};
+      {"phillips_suppression", "--phillips-suppression"},
+      {"capillary_wavenumber", "--capillary-wavenumber"}};
   const auto it = flags.find(key);
   return it == flags.end() ? key : it->second;
 }
@@ -84,6 +86,25 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
   s.phillips_suppression = parse_number("--phillips-suppression", f.suppression, false, "[0, 0.1]");
   s.printed_spreading = f.printed;
   s.allow_extrapolation = f.allow_extrapolation;
+  // Either flag is refused where it would change nothing (as a scene reports the key unused).
+  if (!f.swell_model.empty()) {
+    s.swell_model = parse_choice<UsageError>(kSwellModels, "--swell-model", f.swell_model);
+    if (s.swell == 0.0 || s.spread_blend == 0.0) {
+      throw UsageError("--swell-model", std::string("has no effect with --") +
+                                            (s.swell == 0.0 ? "swell 0" : "spread-blend 0") +
+                                            " (it sets how the swell xi widens the cos-2s spread)");
+    }
+  }
+  if (!f.capillary_wavenumber.empty()) {
+    s.capillary_wavenumber =
+        parse_number("--capillary-wavenumber", f.capillary_wavenumber, false, "[1, 10000] rad/m");
+    if (!capillary_wavenumber_used(s)) {
+      throw UsageError("--capillary-wavenumber",
+                       "has no effect here: k_m enters only the capillary dispersion and the "
+                       "unified spectrum and spreading (give --dispersion capillary, --model "
+                       "unified or --spreading unified)");
+    }
+  }
   return s;
 }
 
@@ -191,6 +212,10 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
                   "Horvath swell xi in [0, 1], adds 16 tanh(omega_p/omega) xi^2 to the cos-2s "
                   "spread (cos-2s family only)")
       ->capture_default_str();
+  cmd->add_option("--swell-model", flags->swell_model,
+                  "lutz (default): the swell adds 16 tanh(omega_p/omega) xi^2 (Lutz eq. 29) | "
+                  "alimardanov: 16 tanh(min(omega/omega_p, 20)) xi^2 (Alimardanov Algorithm 2); "
+                  "needs --swell > 0");
   cmd->add_option("--spread-blend", flags->spread_blend,
                   "blend b in [0, 1]: (1-b) forward cos^2 + b cos-2s (cos-2s family only)")
       ->capture_default_str();
@@ -219,6 +244,11 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
   cmd->add_option("--phillips-suppression", flags->suppression,
                   "Phillips small-wave suppression l/L in [0, 0.1]")
       ->capture_default_str();
+  cmd->add_option("--capillary-wavenumber", flags->capillary_wavenumber,
+                  "k_m [rad/m] in [1, 10000] (default 370, Gamper 3.4) of the capillary "
+                  "dispersion omega^2 = gk(1 + (k/k_m)^2) and of the unified spectrum and "
+                  "spreading; only with --dispersion capillary, --model unified or --spreading "
+                  "unified");
   cmd->add_option("--gravity", flags->gravity, "g [m/s^2] in [0.1, 100]")->capture_default_str();
   cmd->add_flag("--printed-spreading", flags->printed,
                 "use cos2, cos4 and donelan exactly as printed (integral over theta is pi, "

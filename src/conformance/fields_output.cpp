@@ -93,6 +93,15 @@ void add_channel(ExrImage& image, std::map<std::string, std::vector<double>>& ex
 }
 }  // namespace
 
+// `fields` writes the FFT cascades' grids (and points read from them): a Gerstner ocean has none.
+void require_cascades(const Scene& scene) {
+  if (scene.waves.model == WaveModel::gerstner) {
+    throw SceneError("waves.model",
+                     "fields writes the FFT cascades' grids and reads points from them; a gerstner "
+                     "scene has none (render and probe sum its waves)");
+  }
+}
+
 MemoryEstimate fields_memory_estimate(const Scene& scene) {
   const double cells = static_cast<double>(scene.waves.resolution) * scene.waves.resolution;
   const double cascades = static_cast<double>(scene.waves.sizes.size());
@@ -112,6 +121,7 @@ MemoryEstimate fields_memory_estimate(const Scene& scene) {
 
 FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,
                          const std::function<void(const std::string&)>& log) {
+  require_cascades(scene);
   if (log) log("synthesizing " + std::to_string(ocean.cascades.size()) + " cascades");
   const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, threads);
   std::map<std::string, std::vector<double>> exact;  // the doubles behind each channel
@@ -218,6 +228,7 @@ FieldsImage fields_image(const Scene& scene, const Ocean& ocean, int threads,
 }
 
 std::vector<ExrPart> stage_image(const Scene& scene, const Ocean& ocean, Stage stage, int threads) {
+  require_cascades(scene);
   std::vector<ExrPart> parts;
   for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
     const CascadeSpectra& c = ocean.cascades[i];
@@ -243,6 +254,7 @@ std::vector<ExrPart> stage_image(const Scene& scene, const Ocean& ocean, Stage s
 
 std::vector<PointFieldRow> fields_at_point(const Scene& scene, const Ocean& ocean, double x,
                                            double z, int threads) {
+  require_cascades(scene);
   const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, threads);
   std::vector<PointFieldRow> rows;
   const auto row = [&](const std::string& cascade, std::string_view name, double fft,

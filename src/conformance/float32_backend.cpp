@@ -420,6 +420,10 @@ void check_float32_support(const WaveSettings& waves) {
   if (s.spreading.value_or(default_spreading(s.model)) == SpreadingModel::unified) {
     throw std::invalid_argument("waves.spreading.model: unified is not supported" + supported);
   }
+  if (s.swell != 0.0 && s.swell_model != SwellModel::lutz) {
+    throw std::invalid_argument(
+        "waves.spreading.swell_model: only lutz (Lutz eq. 29) is supported with swell" + supported);
+  }
 }
 
 std::vector<Float32Cascade> float32_cascades(const WaveSettings& waves, Float32Defect defect) {

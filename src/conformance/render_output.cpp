@@ -218,9 +218,12 @@ struct PreviewScale {
   double log_average = 0.0;
   double white = 0.0;
 };
-PreviewScale preview_scale(const RenderTally& t, const ImageSettings& s) {
+PreviewScale preview_scale(const RenderTally& t, const ImageSettings& s,
+                           const std::optional<SequenceFrame>& frame = std::nullopt) {
   PreviewScale p;
-  p.log_average = math::exp(t.log_luminance_sum / static_cast<double>(t.pixel_count));
+  // A frame of a sequence is seen by an eye adapted to L_a (Krawczyk), not to its own L̄_w.
+  p.log_average = frame ? frame->adapted_luminance
+                        : math::exp(t.log_luminance_sum / static_cast<double>(t.pixel_count));
   p.white = s.tone_white;
   if (!(p.white > 0.0)) p.white = std::max(p.white, s.tone_key / p.log_average * t.max_luminance);
   return p;
@@ -270,6 +273,16 @@ ExrImage render_exr_header(const Scene& scene, const SlopeVariance& unresolved, 
   exr.attributes["oceanref.unresolved_slope_variance"] =
       format_number(unresolved.upwind) + "," + format_number(unresolved.crosswind);
   return exr;
+}
+
+// The attributes of a frame of a sequence (RenderOutputOptions::frame).
+void add_frame_attributes(ExrImage& exr, const SequenceFrame& f) {
+  exr.attributes["oceanref.frame"] = std::to_string(f.index);
+  exr.attributes["oceanref.frame_rate"] = format_number(f.fps);
+  exr.attributes["oceanref.frame_time"] = format_number(f.time);
+  exr.attributes["oceanref.metered_luminance"] = format_number(f.metered_luminance);
+  exr.attributes["oceanref.adapted_luminance"] = format_number(f.adapted_luminance);
+  exr.attributes["oceanref.tone_key"] = format_number(f.key);
 }
 
 // The per-sample file's layout (`render --samples`): the image's header at S× its resolution,
@@ -411,6 +424,8 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
        {"EXR channels" + image,
         pixels * channel_count(options.aov, adaptive(scene)) * sizeof(float)},
        {"error histograms (lighting, pixel)", 2 * kHistogramBytes},
+       {"the accumulated foam's earlier instants (waves.foam.steps x the wave grids)",
+        scene.shading.whitecaps ? scene.foam.steps * wave_grid_bytes(scene.waves) : 0.0},
        {"per-sample radiance (--samples: " + area + " x render.samples_per_pixel)",
         options.keep_samples ? samples * kSampleBytes : 0.0},
        {"adaptive refinement (render.max_samples_per_pixel per thread)",
@@ -484,6 +499,19 @@ RenderedScene scene_output(const Scene& scene, RenderedImage rendered, bool aov)
   return r;
 }
 
+GerstnerLoopCheck gerstner_loop_check(const Scene& scene, const Ocean& ocean) {
+  OCEANREF_EXPECTS(ocean.gerstner.has_value(), "a Gerstner ocean");
+  const GerstnerWaves& g = *ocean.gerstner;
+  GerstnerLoopCheck c;
+  c.steepness_bound = gerstner_steepness_bound(g);
+  if (c.steepness_bound < 1.0) return c;
+  c.sampled = true;
+  c.extent = 2.0 * (2.0 * std::numbers::pi / g.min_wavenumber);
+  c.loops = gerstner_loops(g, scene.time, scene.camera.position.x - 0.5 * c.extent,
+                           scene.camera.position.z - 0.5 * c.extent, c.extent, 256);
+  return c;
+}
+
 RenderReport report_of(const RenderedScene& rendered) {
   RenderReport r;
   r.pixel_sha256 = rendered.pixel_sha256;
@@ -529,9 +557,10 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
   RenderTally tally;
   // The hashes are known after the last band: placeholders in the header until then.
   const std::string placeholder(64, '0');
-  ExrRowWriter writer(exr_path,
-                      render_exr_header(p->scene, p->unresolved, options.aov, placeholder,
-                                        placeholder, std::string(kPixelErrorAttributeLength, ' ')),
+  ExrImage header = render_exr_header(p->scene, p->unresolved, options.aov, placeholder,
+                                      placeholder, std::string(kPixelErrorAttributeLength, ' '));
+  if (options.frame) add_frame_attributes(header, *options.frame);
+  ExrRowWriter writer(exr_path, header,
                       {{"oceanref.pixel_sha256", 64},
                        {"oceanref.radiance_f64_sha256", 64},
                        {"oceanref.pixel_error", kPixelErrorAttributeLength}});
@@ -564,7 +593,9 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
     }
   }
   if (samples) samples->finish();
-  const PreviewScale scale = preview_scale(tally, p->scene.image);
+  ImageSettings tone = p->scene.image;
+  if (options.frame) tone.tone_key = options.frame->key;
+  const PreviewScale scale = preview_scale(tally, tone, options.frame);
   RenderReport report = tally.report();
   writer.set_deferred("oceanref.pixel_sha256", report.pixel_sha256);
   writer.set_deferred("oceanref.radiance_f64_sha256", report.radiance_f64_sha256);
@@ -582,8 +613,8 @@ RenderReport render_scene_to_files(const Scene& scene, const RenderOutputOptions
     for (int y = 0; y < last - first; ++y) {
       const std::size_t at = static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
       row.clear();
-      preview_row(rgb[0].data() + at, rgb[1].data() + at, rgb[2].data() + at, width, scale,
-                  p->scene.image, row);
+      preview_row(rgb[0].data() + at, rgb[1].data() + at, rgb[2].data() + at, width, scale, tone,
+                  row);
       png.write_row(row.data());
     }
   }

@@ -41,6 +41,17 @@ std::unique_ptr<PreparedRender> prepare_render(
     const Scene& scene, int threads, int samples_per_axis = 0,
     const std::function<void(const std::string&)>& log = {});
 
+// A frame of a sequence (`render --frames`, conformance/sequence.h): where it sits in time and
+// the state of the temporal adaptation (Krawczyk et al. 2005) its preview is tone-mapped with.
+struct SequenceFrame {
+  int index = 0;                   // k: the frame at scene time + k/fps
+  double fps = 30.0;               // frames per second
+  double time = 0.0;               // scene time + k/fps [s]
+  double metered_luminance = 0.0;  // L̄_w of the frame's metering render [cd/m²]
+  double adapted_luminance = 0.0;  // L_a after this frame (Krawczyk eq. 5) [cd/m²]
+  double key = 0.18;               // a = automatic_key(L_a) (Krawczyk eq. 12)
+};
+
 struct RenderOutputOptions {
   int threads = 1;
   int samples_per_axis = 0;  // 0: the scene's
@@ -65,6 +76,11 @@ struct RenderOutputOptions {
   // What decides visibility (`render --renderer`): the rasterizer or the ray tracer; unset: the
   // scene's render.renderer.
   std::optional<Renderer> renderer;
+  // render_scene_to_files: a frame of a sequence (its attributes oceanref.frame,
+  // oceanref.frame_rate, oceanref.frame_time, oceanref.metered_luminance,
+  // oceanref.adapted_luminance and oceanref.tone_key in the EXR; the preview mapped with L_a as
+  // Reinhard's log-average and Krawczyk's key a). The scene is the frame's (its time t_k).
+  std::optional<SequenceFrame> frame;
 };
 
 // The pixel rows a streamed render holds at once: options.band_rows if set, else as many as fit
@@ -140,6 +156,18 @@ struct RenderReport {
   long integrand_evaluations = 0;
 };
 RenderReport report_of(const RenderedScene& rendered);
+
+// The known limit of a Gerstner ocean (waves.model gerstner), loops: the bound b = |u|Σ k_i A_i
+// (det J ≥ 1 − b everywhere, so b < 1 means none) and, when b ≥ 1, det J sampled on a 256²
+// lattice over a square of twice the longest drawn wavelength centred below the camera at the
+// scene's time (gerstner_loops). `render` prints both and warns when the sea folds.
+struct GerstnerLoopCheck {
+  double steepness_bound = 0.0;
+  bool sampled = false;  // b ≥ 1
+  GerstnerLoops loops;
+  double extent = 0.0;  // the square's side [m]
+};
+GerstnerLoopCheck gerstner_loop_check(const Scene& scene, const Ocean& ocean);
 
 // A scene rendered band by band straight to `exr_path` (the bytes render_scene's EXR would
 // have: its hashes are set in the header after the last band) and, when `png_path` is not

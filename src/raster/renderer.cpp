@@ -51,7 +51,7 @@ TraceGrid trace_view(const Geometry& g) {
 std::optional<FootprintFilter> frame_filter(const RenderJob& job) {
   if (!job.footprint_filtering) return std::nullopt;
   return make_footprint_filter(*job.ocean, job.time, job.shading.interpolation, job.shading.normals,
-                               job.threads);
+                               job.shading.whitecaps, job.threads);
 }
 
 // The objects' view for the tracer: the frame's vertices, their triangles.
@@ -292,6 +292,13 @@ Vec3 object_radiance(const RenderFrame& frame, std::size_t triangle, const glm::
                                  light.sky_irradiance);
 }
 
+// A = I + u∂D̄ of read fields (their raw sums are scaled by u).
+Deformation read_deformation(const PointFields& f) {
+  return {1.0 + f.raw[static_cast<std::size_t>(Field::ddx_dx)],
+          f.raw[static_cast<std::size_t>(Field::ddx_dz)], f.ddz_dx,
+          1.0 + f.raw[static_cast<std::size_t>(Field::ddz_dz)]};
+}
+
 // One sample of a grid with `samples_per_axis` samples per pixel axis.
 SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm::dvec3& ray,
                          int samples_per_axis) {
@@ -361,9 +368,13 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
     for (std::size_t c = 0; c < 3; ++c) n[c] = p.normal[c] + (kMinimumCosView - vn) * p.view[c];
     p.normal = normalize(n);
   }
-  const SurfaceFrame surface = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
-  p.lighting =
-      lighting_terms(sh, job.sky, light, p.view, surface, p.roughness, job.estimate_fast_error);
+  if (sh.model == ShadingModel::four_term) {
+    p.lighting = four_term_lighting(sh, job.sky, light, p.view, p.normal, p.position.y);
+  } else {
+    const SurfaceFrame surface = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
+    p.lighting =
+        lighting_terms(sh, job.sky, light, p.view, surface, p.roughness, job.estimate_fast_error);
+  }
   if (is_ray_traced(job.renderer) && job.object_reflections && !g.object_triangles.empty()) {
     // The mirror ray about the shading normal: an object there replaces the reflected sky.
     const double vn_shading = dot(p.view, p.normal);
@@ -385,8 +396,17 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
     p.lighting_error[c] = l.sun_error[c] + l.sky_error[c] + l.sea_error[c];
   }
   if (sh.whitecaps) {
-    // Per-sample indicator; the S×S samples of a pixel give its footprint coverage.
-    p.whitecap_coverage = whitecap_coverage(p.fields.jacobian, 0.0, sh.whitecap_threshold);
+    // Dupuy & Bruneton: det J under the sample's footprint is normal with the read fields' det J
+    // as mean and the variance of the waves they lack (waves/whitecaps.h): the unresolved ones
+    // and, with footprint filtering, those the filter removed under the footprint.
+    const JacobianMoments residual =
+        frame.filter
+            ? job.unresolved_jacobian + footprint_jacobian_moments(*frame.filter, p.footprint)
+            : job.unresolved_jacobian;
+    p.jacobian_mean = p.fields.jacobian;
+    p.jacobian_variance =
+        jacobian_variance(read_deformation(p.fields), residual, frame.wind_cos, frame.wind_sin);
+    p.whitecap_coverage = foam_coverage_at(frame, p.fields, p.x0.x, p.x0.y, residual);
     const double cos_sun = std::fmax(0.0, dot(p.normal, light.sun_direction));
     Vec3 e_sun{};
     for (std::size_t c = 0; c < 3; ++c) {
@@ -652,6 +672,26 @@ class StageClock {
 };
 }  // namespace
 
+double foam_coverage_at(const RenderFrame& frame, const PointFields& fields, double x, double z,
+                        const JacobianMoments& residual) {
+  const RenderJob& job = frame.job;
+  const ShadingSettings& sh = job.shading;
+  const auto coverage = [&](const PointFields& f) {
+    return whitecap_coverage(
+        f.jacobian,
+        jacobian_variance(read_deformation(f), residual, frame.wind_cos, frame.wind_sin),
+        sh.whitecap_threshold);
+  };
+  if (frame.foam_history.empty()) return coverage(fields);
+  double foam = 0.0;
+  for (const FrameFields& earlier : frame.foam_history) {
+    const PointFields f = combine_shading_at(*job.ocean, earlier.grids, earlier.evolved, x, z,
+                                             sh.interpolation, sh.normals);
+    foam = accumulated_foam(foam, coverage(f), job.foam.decay, job.foam.time_step);
+  }
+  return accumulated_foam(foam, coverage(fields), job.foam.decay, job.foam.time_step);
+}
+
 RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
                           RenderTimes* times) {
   OCEANREF_EXPECTS(job.ocean != nullptr && job.samples_per_axis >= 1 &&
@@ -663,7 +703,18 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
   RenderFrame frame;
   frame.job = job;
   frame.unresolved = unresolved;
+  frame.wind_cos = math::cos(job.ocean->spectrum.wind_direction);
+  frame.wind_sin = math::sin(job.ocean->spectrum.wind_direction);
   frame.fields = frame_fields(job);
+  if (job.shading.whitecaps && job.foam.steps > 0) {
+    OCEANREF_EXPECTS(!job.footprint_filtering,
+                     "accumulated foam without footprint filtering (scene validation)");
+    for (int j = job.foam.steps; j >= 1; --j) {
+      RenderJob earlier = job;
+      earlier.time = job.time - j * job.foam.time_step;
+      frame.foam_history.push_back(frame_fields(earlier));
+    }
+  }
   frame.filter = frame_filter(job);
   clock.lap(&RenderTimes::synthesis);
   frame.displacement_bound = height_bound(*job.ocean);

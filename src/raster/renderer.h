@@ -25,6 +25,7 @@
 #include "waves/ocean.h"
 #include "waves/slope_budget.h"
 #include "waves/surface.h"
+#include "waves/whitecaps.h"
 
 namespace oceanref {
 
@@ -78,6 +79,14 @@ struct RenderJob {
   ProjectedGridSettings grid;  // columns, rows, margin (the bound is filled in)
   Sky sky;
   ShadingSettings shading;
+  // shading.whitecaps: the displacement-gradient moments (× u²) of the waves the renderer does
+  // not draw (unresolved_jacobian_moments; scene_render_job fills them): the variance of det J
+  // every sample adds to what its footprint holds (waves/whitecaps.h).
+  JacobianMoments unresolved_jacobian;
+  // shading.whitecaps with foam.steps > 0 (`waves.foam`): the coverage accumulates over the
+  // instants t − steps·Δt, …, t at each sample's x0 (Vincevičius listing 2.4 applied to W;
+  // foam_coverage_at). Not with footprint_filtering (the earlier instants are not filtered).
+  FoamSequence foam;
   int samples_per_axis = 2;  // S: S×S stratified samples per pixel, 1…kMaxSamplesPerAxis
   // Adaptive sampling (`render.pixel_tolerance`): a pixel whose estimated error exceeds
   // pixel_tolerance × its largest channel is refined by nested stratification — its S×S grid
@@ -249,6 +258,9 @@ struct FrameGeometry {
 struct RenderFrame {
   RenderJob job;  // its first_row/last_row are not used: render_rows names the rows
   SlopeVariance unresolved;
+  double wind_cos = 1.0, wind_sin = 0.0;  // the wind direction (cos φ, sin φ)
+  // The fields at t − j·Δt, j = foam.steps … 1 (oldest first), for the accumulated foam.
+  std::vector<FrameFields> foam_history;
   double displacement_bound = 0.0;
   FrameFields fields;
   FrameGeometry geometry;
@@ -257,6 +269,15 @@ struct RenderFrame {
 };
 RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
                           RenderTimes* times = nullptr);
+// The whitecap coverage at x0 = (x, z) of the frame's sea (Dupuy & Bruneton 2012): W = P(det J <
+// ε) with det J normal, its mean the fields' det J and its variance that of `residual` (the waves
+// the read fields lack, waves/whitecaps.h); with job.foam.steps > 0, W accumulated over the
+// frame's foam_history and the frame itself by accumulated_foam (Vincevičius listing 2.4),
+// starting from no foam — as accumulate_foam folds the indicator (`oceanref fields`), which it
+// equals where the variance is 0 and the threshold 0. `fields` are the frame's at (x, z).
+double foam_coverage_at(const RenderFrame& frame, const PointFields& fields, double x, double z,
+                        const JacobianMoments& residual);
+
 // Pixel rows [first_row, last_row) of the frame: the same bits as those rows of a whole render
 // (checked with require_finite). `progress` (may be empty) gets the band's finished share.
 RenderedImage render_rows(const RenderFrame& frame, int first_row, int last_row,
@@ -291,6 +312,9 @@ struct SampleProbe {
   Footprint footprint;      // the sample's footprint on the sea (when filtering) [m²]
   LightingTerms lighting;   // sun, sky, sea, F̄ and their estimated errors
   Vec3 foam{}, radiance{};
+  // shading.whitecaps: det J under the sample's footprint, mean and variance (waves/whitecaps.h),
+  // and W = P(det J < ε) (Dupuy & Bruneton 2012).
+  double jacobian_mean = 1.0, jacobian_variance = 0.0;
   double whitecap_coverage = 0.0;
   Vec3 lighting_error{};  // of `radiance` (see RenderedImage::lighting_error)
 };

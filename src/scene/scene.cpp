@@ -41,12 +41,19 @@ const std::vector<std::string>& scene_key_paths() {
       "waves.spectrum.pm_wind",
       "waves.spectrum.tma_attenuation",
       "waves.spectrum.phillips_suppression",
+      "waves.spectrum.capillary_wavenumber",
       "waves.spectrum.allow_extrapolation",
       "waves.spreading.model",
       "waves.spreading.swell",
+      "waves.spreading.swell_model",
       "waves.spreading.spread_blend",
       "waves.spreading.printed",
       "waves.dispersion",
+      "waves.model",
+      "waves.gerstner.count",
+      "waves.gerstner.direction_bins",
+      "waves.gerstner.min_wavelength",
+      "waves.gerstner.max_wavelength",
       "waves.cascades.sizes",
       "waves.cascades.largest",
       "waves.cascades.count",
@@ -84,6 +91,17 @@ const std::vector<std::string>& scene_key_paths() {
       "atmosphere.sun_zenith_deg",
       "atmosphere.sun_azimuth_deg",
       "atmosphere.turbidity",
+      "shading.model",
+      "shading.four_term.ambient_intensity",
+      "shading.four_term.ambient_colour",
+      "shading.four_term.air_bubble_density",
+      "shading.four_term.air_bubble_colour",
+      "shading.four_term.subsurface_height_intensity",
+      "shading.four_term.subsurface_view_intensity",
+      "shading.four_term.water_scattering_colour",
+      "shading.four_term.specular_colour",
+      "shading.four_term.shininess",
+      "shading.four_term.reflection_intensity",
       "shading.sun",
       "shading.sky",
       "shading.sea",
@@ -399,12 +417,15 @@ SpectrumSettings parse_spectrum(const Section& spectrum, const Section* spreadin
   s.depth_attenuation = choice(spectrum, "tma_attenuation", kDepthAttenuations, "exact");
   s.phillips_suppression =
       spectrum.number("phillips_suppression", s.phillips_suppression, -big, big);
+  s.capillary_wavenumber =
+      spectrum.number("capillary_wavenumber", s.capillary_wavenumber, -big, big);
   s.allow_extrapolation = spectrum.boolean("allow_extrapolation", false);
   if (spreading != nullptr) {
     if (spreading->has("model")) {
       s.spreading = choice(*spreading, "model", kSpreadingModels, "");
     }
     s.swell = spreading->number("swell", s.swell, -big, big);
+    s.swell_model = choice(*spreading, "swell_model", kSwellModels, "lutz");
     s.spread_blend = spreading->number("spread_blend", s.spread_blend, -big, big);
     s.printed_spreading = spreading->boolean("printed", false);
   }
@@ -656,6 +677,34 @@ void parse_rendering(const Section& top, Scene& scene) {
   a.turbidity = atmosphere.number("turbidity", a.turbidity, kMinTurbidity, kMaxTurbidity);
   const Section shading(top.has("shading") ? top.at("shading") : empty, "shading");
   ShadingSettings& h = scene.shading;
+  h.model = choice(shading, "model", kShadingModels, "bruneton");
+  if (shading.has("four_term")) {
+    const Section f(shading.at("four_term"), "shading.four_term");
+    FourTermParameters& p = h.four_term;
+    const auto colour = [&](const char* key, const Vec3& fallback) {
+      const glm::dvec3 v = vector3(f, key, {fallback[0], fallback[1], fallback[2]}, 1.0);
+      for (glm::length_t i = 0; i < 3; ++i) {
+        if (v[i] < 0.0) {
+          throw SceneError(f.where(key) + "[" + std::to_string(i) + "]",
+                           "must be in [0, 1], got " + shortest_number(v[i]));
+        }
+      }
+      return Vec3{v.x, v.y, v.z};
+    };
+    p.ambient_intensity = f.number("ambient_intensity", p.ambient_intensity, 0.0, 1e3);
+    p.ambient_colour = colour("ambient_colour", p.ambient_colour);
+    p.air_bubble_density = f.number("air_bubble_density", p.air_bubble_density, 0.0, 1e3);
+    p.air_bubble_colour = colour("air_bubble_colour", p.air_bubble_colour);
+    p.subsurface_height_intensity =
+        f.number("subsurface_height_intensity", p.subsurface_height_intensity, 0.0, 1e3, " per m");
+    p.subsurface_view_intensity =
+        f.number("subsurface_view_intensity", p.subsurface_view_intensity, 0.0, 1e3);
+    p.water_scattering_colour = colour("water_scattering_colour", p.water_scattering_colour);
+    p.specular_colour = colour("specular_colour", p.specular_colour);
+    p.shininess = f.number("shininess", p.shininess, 1.0, 1e4);
+    p.reflection_intensity = f.number("reflection_intensity", p.reflection_intensity, 0.0, 1e3);
+    validate(p);
+  }
   h.sun = shading.boolean("sun", true);
   h.sky = shading.boolean("sky", true);
   h.sea = shading.boolean("sea", true);
@@ -761,10 +810,30 @@ std::string foam_inert(const Scene& s) {
   }
   return "";
 }
+// Keys of one shading model in a scene of the other.
+std::string four_term_inert(const Scene& s) {
+  return s.shading.model == ShadingModel::four_term ? "" : "shading.model is not four_term";
+}
+std::string bruneton_inert(const Scene& s) {
+  return s.shading.model == ShadingModel::bruneton
+             ? ""
+             : "shading.model is four_term (closed forms, its own colours: shading.four_term)";
+}
+
 std::string foam_sequence_inert(const Scene& s) {
   const std::string none = foam_inert(s);
   if (!none.empty()) return none;
   return s.foam.steps == 0 ? "waves.foam.steps is 0 (the instantaneous foam indicator)" : "";
+}
+
+// Keys of one wave model in a scene of the other.
+std::string gerstner_inert(const Scene& s) {
+  return s.waves.model == WaveModel::gerstner ? "" : "waves.model is not gerstner";
+}
+std::string cascades_inert(const Scene& s) {
+  return s.waves.model == WaveModel::gerstner
+             ? "waves.model is gerstner (a wave set summed directly: no cascades or grids)"
+             : "";
 }
 
 std::string tiling_inert(const Scene& s) {
@@ -784,6 +853,13 @@ std::string mastin_shift_inert(const Scene& s) {
   return s.waves.mastin.animation == MastinAnimation::constant_shift
              ? ""
              : "waves.mastin.animation is not constant_shift";
+}
+
+// D = (1 − b) D_cos² + b D_cos2s (Alimardanov Algorithm 2): with b = 0 nothing of s is used.
+std::string spread_blend_zero_inert(const Scene& s) {
+  return s.waves.spectrum.spread_blend == 0.0
+             ? "waves.spreading.spread_blend is 0 (the cos-2s part has no weight)"
+             : "";
 }
 
 const std::vector<KeyUse>& key_uses() {
@@ -829,6 +905,16 @@ const std::vector<KeyUse>& key_uses() {
                     ? ""
                     : "applies to the phillips spectrum only";
        }},
+      {"waves.spectrum.capillary_wavenumber",
+       [](const Scene& s) -> std::string {
+         const SpectrumSettings& w = s.waves.spectrum;
+         if (capillary_wavenumber_used(w)) return "";
+         return "applies to the capillary dispersion and the unified spectrum and spreading only "
+                "(here the dispersion is " +
+                std::string(to_string(w.dispersion.value_or(default_dispersion(w.model)))) +
+                ", the spreading " +
+                std::string(to_string(w.spreading.value_or(default_spreading(w.model)))) + ")";
+       }},
       {"waves.spectrum.allow_extrapolation",
        [](const Scene& s) -> std::string {
          SpectrumSettings w = s.waves.spectrum;
@@ -841,6 +927,12 @@ const std::vector<KeyUse>& key_uses() {
          }
          return "no parameter is outside its fitted range";
        }},
+      {"waves.spreading.swell", spread_blend_zero_inert},
+      {"waves.spreading.swell_model",
+       [](const Scene& s) -> std::string {
+         if (s.waves.spectrum.swell == 0.0) return "waves.spreading.swell is 0";
+         return spread_blend_zero_inert(s);
+       }},
       {"waves.spreading.printed",
        [](const Scene& s) -> std::string {
          const SpectrumSettings& w = s.waves.spectrum;
@@ -852,12 +944,25 @@ const std::vector<KeyUse>& key_uses() {
          return "applies to the cos2, cos4 and donelan spreading only, not " +
                 std::string(to_string(m));
        }},
+      {"waves.gerstner.count", gerstner_inert},
+      {"waves.gerstner.direction_bins", gerstner_inert},
+      {"waves.gerstner.min_wavelength", gerstner_inert},
+      {"waves.gerstner.max_wavelength", gerstner_inert},
+      {"waves.cascades.sizes", cascades_inert},
+      {"waves.cascades.largest", cascades_inert},
+      {"waves.cascades.count", cascades_inert},
+      {"waves.resolution", cascades_inert},
+      {"waves.low_resolution", cascades_inert},
+      {"waves.band_partitioning", cascades_inert},
+      {"shading.interpolation", cascades_inert},
       {"waves.cascades.factor",
        [](const Scene& s) -> std::string {
+         if (const std::string r = cascades_inert(s); !r.empty()) return r;
          return s.waves.sizes.size() == 1 ? "there is one cascade (count 1)" : "";
        }},
       {"waves.cascades.band_edges",
        [](const Scene& s) -> std::string {
+         if (const std::string r = cascades_inert(s); !r.empty()) return r;
          return s.waves.sizes.size() == 1 ? "there is one cascade (no hand-over)" : "";
        }},
       {"waves.allow_positive_choppiness",
@@ -900,8 +1005,25 @@ const std::vector<KeyUse>& key_uses() {
       {"waves.foam.steps", foam_inert},
       {"waves.foam.decay", foam_sequence_inert},
       {"waves.foam.time_step", foam_sequence_inert},
+      {"shading.four_term.ambient_intensity", four_term_inert},
+      {"shading.four_term.ambient_colour", four_term_inert},
+      {"shading.four_term.air_bubble_density", four_term_inert},
+      {"shading.four_term.air_bubble_colour", four_term_inert},
+      {"shading.four_term.subsurface_height_intensity", four_term_inert},
+      {"shading.four_term.subsurface_view_intensity", four_term_inert},
+      {"shading.four_term.water_scattering_colour", four_term_inert},
+      {"shading.four_term.specular_colour", four_term_inert},
+      {"shading.four_term.shininess", four_term_inert},
+      {"shading.four_term.reflection_intensity", four_term_inert},
+      {"shading.fresnel", bruneton_inert},
+      {"shading.erfc", bruneton_inert},
+      {"shading.accuracy", bruneton_inert},
+      {"shading.tolerance", bruneton_inert},
       {"shading.sea_colour",
-       [](const Scene& s) -> std::string { return s.shading.sea ? "" : "shading.sea is false"; }},
+       [](const Scene& s) -> std::string {
+         if (const std::string r = bruneton_inert(s); !r.empty()) return r;
+         return s.shading.sea ? "" : "shading.sea is false";
+       }},
       {"shading.foam_albedo",
        [](const Scene& s) -> std::string {
          return s.shading.whitecaps ? "" : "shading.whitecaps is false";
@@ -911,9 +1033,13 @@ const std::vector<KeyUse>& key_uses() {
          return s.shading.whitecaps ? "" : "shading.whitecaps is false";
        }},
       {"shading.sun_order",
-       [](const Scene& s) -> std::string { return s.shading.sun ? "" : "shading.sun is false"; }},
+       [](const Scene& s) -> std::string {
+         if (const std::string r = bruneton_inert(s); !r.empty()) return r;
+         return s.shading.sun ? "" : "shading.sun is false";
+       }},
       {"shading.sky_order",
        [](const Scene& s) -> std::string {
+         if (const std::string r = bruneton_inert(s); !r.empty()) return r;
          // The rule also averages the Fresnel factor F̄ of the sea term.
          return s.shading.sky || s.shading.sea ? "" : "shading.sky and shading.sea are false";
        }},
@@ -957,6 +1083,54 @@ json parse_scene_json(std::string_view text, const std::string& source) {
   // Strict: anything after the value but whitespace is a syntax error; no comments.
   json::sax_parse(text, &sax, json::input_format_t::json, true, false);
   return document;
+}
+
+// waves.model and waves.gerstner (after the rendering settings: some do not go with it).
+void parse_gerstner(const Section& waves, Scene& scene) {
+  WaveSettings& w = scene.waves;
+  w.model = choice(waves, "model", kWaveModels, "fft");
+  // waves.gerstner is validated in any scene (and reported unused without the model).
+  // The band drawn: by default from 2 peak wavelengths down to a twentieth of one.
+  const Spectrum spectrum = make_spectrum(w.spectrum);
+  const double peak = 2.0 * std::numbers::pi / spectrum.peak_wavenumber;
+  const json empty = json::object();
+  const Section g(waves.has("gerstner") ? waves.at("gerstner") : empty, "waves.gerstner");
+  GerstnerDraw& d = w.gerstner;
+  d.count = g.integer("count", d.count, 1, kMaxGerstnerWaves);
+  d.direction_bins = g.integer("direction_bins", d.direction_bins, 1, d.count);
+  if (d.count % d.direction_bins != 0) {
+    throw SceneError("waves.gerstner.direction_bins",
+                     "must divide waves.gerstner.count = " + std::to_string(d.count) + ", got " +
+                         std::to_string(d.direction_bins));
+  }
+  const double longest = g.number("max_wavelength", std::fmin(2.0 * peak, 1e5), 1e-3, 1e5, " m");
+  const double shortest =
+      g.number("min_wavelength", std::fmin(peak / 20.0, 0.5 * longest), 1e-5, 1e4, " m");
+  if (!(shortest < longest)) {
+    throw SceneError("waves.gerstner.min_wavelength",
+                     "must be below waves.gerstner.max_wavelength = " + shortest_number(longest) +
+                         " m, got " + shortest_number(shortest));
+  }
+  d.min_wavenumber = 2.0 * std::numbers::pi / longest;
+  d.max_wavenumber = 2.0 * std::numbers::pi / shortest;
+  d.choppiness = w.choppiness.front();
+  if (w.model != WaveModel::gerstner) return;
+  const auto refuse = [](const std::string& key, const std::string& why) {
+    throw SceneError(key, why +
+                              " (waves.model is gerstner: one wave set summed anywhere, "
+                              "directly)");
+  };
+  if (w.synthesis != Synthesis::periodic) refuse("waves.synthesis", "must be periodic");
+  if (w.realization != Realization::gaussian) refuse("waves.realization", "must be gaussian");
+  if (scene.image.footprint_filtering) refuse("render.footprint_filtering", "must be false");
+  if (scene.image.renderer == Renderer::raytrace_surface) {
+    refuse("render.renderer",
+           "raytrace_surface needs the cascades' bounds; use raster or raytrace");
+  }
+  if (waves.has("choppiness") && waves.at("choppiness").is_array() &&
+      waves.at("choppiness").size() != 1) {
+    refuse("waves.choppiness", "must be one number");
+  }
 }
 
 Scene parse_scene(const json& document) {
@@ -1020,7 +1194,29 @@ Scene parse_scene(const json& document) {
     const Section foam(waves.at("foam"), "waves.foam");
     scene.foam.decay = foam.number("decay", scene.foam.decay, 0.0, 1e3, " per second");
     scene.foam.time_step = foam.number("time_step", scene.foam.time_step, 1e-4, 10.0, " s");
-    scene.foam.steps = foam.integer("steps", 0, 0, 10000);
+    if (foam.has("steps") && foam.at("steps").is_string()) {
+      // "steady": as many steps as make the foam independent of where it started.
+      if (foam.at("steps") != "steady") {
+        throw SceneError("waves.foam.steps",
+                         "expected an integer in [0, " + std::to_string(kMaxFoamSteps) +
+                             "] or \"steady\", got " + escape_value(foam.at("steps").dump()));
+      }
+      if (!(scene.foam.decay > 0.0)) {
+        throw SceneError("waves.foam.steps",
+                         "\"steady\" needs waves.foam.decay > 0 (foam that never decays has no "
+                         "steady state)");
+      }
+      const double steps = std::floor(1.0 / (scene.foam.decay * scene.foam.time_step)) + 2.0;
+      if (steps > kMaxFoamSteps) {
+        throw SceneError("waves.foam.steps",
+                         "\"steady\" would take " + format_number(steps) + " steps (more than " +
+                             std::to_string(kMaxFoamSteps) +
+                             "): raise waves.foam.decay or waves.foam.time_step");
+      }
+      scene.foam.steps = steady_foam_steps(scene.foam.decay, scene.foam.time_step);
+    } else {
+      scene.foam.steps = foam.integer("steps", 0, 0, kMaxFoamSteps);
+    }
   }
   try {
     (void)make_spectrum(w.spectrum);
@@ -1028,6 +1224,13 @@ Scene parse_scene(const json& document) {
     throw SceneError(spectrum_path(e.key()), e.what());
   }
   parse_rendering(top, scene);
+  parse_gerstner(waves, scene);
+  if (scene.foam.steps > 0 && scene.shading.whitecaps && scene.image.footprint_filtering) {
+    throw SceneError("waves.foam.steps",
+                     "accumulated whitecaps are read at each sample's point, not filtered to its "
+                     "footprint: not with render.footprint_filtering (set steps to 0 or turn the "
+                     "filter off)");
+  }
   scene.unused = unused_keys(document, scene);
   scene.canonical = document.dump();
   return scene;
@@ -1048,6 +1251,14 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) 
   job.grid = scene.grid;
   job.sky = scene_sky(scene);
   job.shading = scene.shading;
+  // A Gerstner set has no grids: it is summed at every point.
+  if (scene.waves.model == WaveModel::gerstner) job.shading.interpolation = Interpolation::direct;
+  if (scene.shading.whitecaps) {
+    job.unresolved_jacobian = unresolved_jacobian_moments(
+        ocean, slope_variance_budget(ocean, scene.waves.minimum_wavelength, scene.time,
+                                     scene.shading.interpolation, scene.shading.normals, threads));
+  }
+  job.foam = scene.foam;
   job.samples_per_axis = scene.image.samples_per_axis;
   job.pixel_tolerance = scene.image.pixel_tolerance;
   job.max_refinements = scene.image.max_refinements;

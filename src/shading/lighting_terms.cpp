@@ -111,6 +111,24 @@ FrameLighting frame_lighting(const Sky& sky, const ShadingSettings& sh) {
   return l;
 }
 
+LightingTerms four_term_lighting(const ShadingSettings& sh, const Sky& sky,
+                                 const FrameLighting& light, const Vec3& view, const Vec3& normal,
+                                 double height) {
+  const Vec3 light_colour = scaled(light.sun_radiance, light.sun_solid_angle / std::numbers::pi);
+  const Vec3 mirror = mirror_direction(view, normal);
+  const Vec3 sky_at_mirror = mirror[1] > 0.0 ? sky_radiance_rgb(sky, mirror) : Vec3{};
+  const FourTermRadiance r = four_term_shading(sh.four_term, view, normal, light.sun_direction,
+                                               height, light_colour, sky_at_mirror);
+  LightingTerms t;
+  if (sh.sun) t.sun = r.specular;
+  if (sh.sky) t.sky = r.reflection;
+  if (sh.sea) {
+    for (std::size_t c = 0; c < 3; ++c) t.sea[c] = r.ambient[c] + r.subsurface[c];
+  }
+  t.mean_fresnel = four_term_fresnel(view, normal);
+  return t;
+}
+
 LightingTerms lighting_terms(const ShadingSettings& sh, const Sky& sky, const FrameLighting& light,
                              const Vec3& view, const SurfaceFrame& frame, SlopeVariance s,
                              bool estimate_fast_error) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/choice.h"
+#include "shading/four_term.h"
 #include "shading/ocean_lighting.h"
 #include "shading/reference_lighting.h"
 #include "waves/ocean.h"
@@ -26,7 +27,18 @@ inline constexpr std::array<Choice<LightingAccuracy>, 2> kLightingAccuracies{{
     {LightingAccuracy::fast, "fast"},
 }};
 
+// The shading model of the sea (`shading.model`): Bruneton 2010's ocean BRDF under the Preetham
+// sky (the reference), or Vincevičius 2024's four-term model (shading/four_term.h), an
+// alternative a real-time renderer may use, in closed form (no integrals, no error).
+enum class ShadingModel { bruneton, four_term };
+inline constexpr std::array<Choice<ShadingModel>, 2> kShadingModels{{
+    {ShadingModel::bruneton, "bruneton"},
+    {ShadingModel::four_term, "four_term"},
+}};
+
 struct ShadingSettings {
+  ShadingModel model = ShadingModel::bruneton;
+  FourTermParameters four_term;  // model four_term
   bool sun = true;
   bool sky = true;
   bool sea = true;
@@ -71,6 +83,15 @@ struct LightingTerms {
   long evaluations = 0;  // integrand evaluations of the reference integrals
   bool converged = true;
 };
+// Vincevičius's four terms (eq. 2.11–2.15) as LightingTerms: `sun` the specular L_s, `sky` the
+// reflection L_r (the Preetham sky at the mirror direction of V about N, 0 below the horizon),
+// `sea` the ambient and subsurface light L_a + L_ss, each 0 when its shading toggle is off; F the
+// model's Fresnel (as mean_fresnel); errors 0 (closed forms). C_l = L_sun Ω_sun/π (the radiance
+// of a white Lambertian surface facing the sun); H = `height` [m] above the mean sea level.
+LightingTerms four_term_lighting(const ShadingSettings& sh, const Sky& sky,
+                                 const FrameLighting& light, const Vec3& view, const Vec3& normal,
+                                 double height);
+
 // The terms for the view V at a surface frame with unresolved slope variance s. With reference
 // accuracy the errors are the integrators' estimates; with fast accuracy they are
 // |fast − reference| + the reference's estimate when `estimate_fast_error` (which costs the

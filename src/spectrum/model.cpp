@@ -140,7 +140,7 @@ void resolve_unified_model(const SpectrumSettings& in, Spectrum& s) {
   p.sigma = unified_sigma(omega_c);
   p.long_wave_alpha = unified_long_wave_alpha(omega_c);
   p.friction_velocity = friction_velocity(u, roughness_length(u, p.peak_phase_speed, g));
-  p.short_wave_alpha = unified_short_wave_alpha(p.friction_velocity, kUnifiedMinPhaseSpeed);
+  p.short_wave_alpha = unified_short_wave_alpha(p.friction_velocity, p.min_phase_speed);
   if (p.short_wave_alpha < 0.0) {
     if (!in.allow_extrapolation) {
       throw SettingError("wind_speed",
@@ -223,6 +223,14 @@ DispersionKind default_dispersion(SpectrumModel m) {
   return DispersionKind::deep;
 }
 
+// k_m is read by capillary_factor (dispersion.cpp), unified_phase_speed (the Unified spectrum's
+// and spreading's c(k)), unified_short_wave_side_effect (F_m) and c_m = unified_min_phase_speed.
+bool capillary_wavenumber_used(const SpectrumSettings& s) {
+  return s.dispersion.value_or(default_dispersion(s.model)) == DispersionKind::capillary ||
+         s.model == SpectrumModel::unified ||
+         s.spreading.value_or(default_spreading(s.model)) == SpreadingModel::unified;
+}
+
 Spectrum make_spectrum(const SpectrumSettings& in) {
   validate(in);
   Spectrum s{};
@@ -236,7 +244,9 @@ Spectrum make_spectrum(const SpectrumSettings& in) {
   s.swell = in.swell;
   s.spread_blend = in.spread_blend;
   s.printed_spreading = in.printed_spreading;
+  s.swell_model = in.swell_model;
   s.unified.capillary_wavenumber = in.capillary_wavenumber;
+  s.unified.min_phase_speed = unified_min_phase_speed(in.capillary_wavenumber);
   if (!is_cos_2s_family(s.spreading)) {
     if (in.swell != 0.0) {
       throw SettingError("swell",
@@ -350,6 +360,9 @@ double cos_2s_spread(const Spectrum& s, double omega) {
     default:
       return 0.0;
   }
+  if (s.swell_model == SwellModel::alimardanov) {
+    return spread + alimardanov_swell_spread(omega, s.peak_frequency, s.swell);
+  }
   return spread + horvath_swell_spread(omega, s.peak_frequency, s.swell);
 }
 
@@ -370,7 +383,7 @@ double directional_spreading(const Spectrum& s, double omega, double k, double t
     case SpreadingModel::unified:
       return unified_spreading(
           t, unified_upwind_ratio(unified_phase_speed(s, k), s.unified.peak_phase_speed,
-                                  kUnifiedMinPhaseSpeed, s.unified.friction_velocity));
+                                  s.unified.min_phase_speed, s.unified.friction_velocity));
     default: {
       const double d = cos_2s_spreading(t, cos_2s_spread(s, omega));
       return s.spread_blend == 1.0 ? d : spread_blend(t, d, s.spread_blend);
@@ -418,6 +431,9 @@ std::string_view to_string(SpreadingModel m) {
 }
 std::string_view to_string(DispersionKind d) {
   return choice_name(kDispersionKinds, d);
+}
+std::string_view to_string(SwellModel m) {
+  return choice_name(kSwellModels, m);
 }
 
 }  // namespace oceanref

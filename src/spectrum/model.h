@@ -33,6 +33,9 @@ enum class SpreadingModel {
 };
 enum class PiersonMoskowitzWind { u10, u19_5 };           // which wind the speed means
 enum class DepthAttenuation { exact, thompson_vincent };  // TMA Φ: eq. 1.9 or eq. 1.10
+// How the swell ξ widens the cos-2s spread s (FORMULAS.md item 9): Δs = 16 tanh(ω_p/ω) ξ²
+// (Lutz eq. 29) or 16 tanh(min(ω/ω_p, 20)) ξ² (Alimardanov Algorithm 2), added to s either way.
+enum class SwellModel { lutz, alimardanov };
 
 // The names of the choices, as scene files, the command line and the Python module spell them.
 inline constexpr std::array<Choice<SpectrumModel>, 6> kSpectrumModels{{
@@ -62,6 +65,10 @@ inline constexpr std::array<Choice<DepthAttenuation>, 2> kDepthAttenuations{{
     {DepthAttenuation::exact, "exact"},
     {DepthAttenuation::thompson_vincent, "thompson-vincent"},
 }};
+inline constexpr std::array<Choice<SwellModel>, 2> kSwellModels{{
+    {SwellModel::lutz, "lutz"},
+    {SwellModel::alimardanov, "alimardanov"},
+}};
 
 // What a user chooses. Unset optionals take the model's own value.
 struct SpectrumSettings {
@@ -73,8 +80,9 @@ struct SpectrumSettings {
   double wind_direction = 0.0;  // φ [rad]: wind vector (cos φ, sin φ) in (x, z)
   std::optional<SpreadingModel> spreading;
   std::optional<DispersionKind> dispersion;
-  double swell = 0.0;              // ξ (Lutz eq. 29), cos-2s family only
-  double spread_blend = 1.0;       // b (Alimardanov Algorithm 2), cos-2s family only
+  double swell = 0.0;                         // ξ (Lutz eq. 29), cos-2s family only
+  SwellModel swell_model = SwellModel::lutz;  // the form of Δs(ξ), used when ξ ≠ 0
+  double spread_blend = 1.0;                  // b (Alimardanov Algorithm 2), cos-2s family only
   bool printed_spreading = false;  // cos2/cos4/donelan as printed (∫D ≠ 1) instead of normalized
   std::optional<double> gamma;     // peak enhancement γ (JONSWAP/TMA)
   std::optional<double> alpha;     // equilibrium range α (PM/JONSWAP/TMA) or A (Phillips)
@@ -83,8 +91,10 @@ struct SpectrumSettings {
   std::optional<double> sigma_high;      // σ for ω > ω_p (JONSWAP/TMA)
   PiersonMoskowitzWind pm_wind = PiersonMoskowitzWind::u10;
   DepthAttenuation depth_attenuation = DepthAttenuation::exact;
-  double phillips_suppression = 1e-3;   // l/L (Gamper §3.4)
-  double capillary_wavenumber = 370.0;  // k_m [rad/m]
+  double phillips_suppression = 1e-3;  // l/L (Gamper §3.4)
+  // k_m [rad/m] of the capillary dispersion and of the Unified spectrum and spreading (Gamper
+  // §3.4: 370); see capillary_wavenumber_used.
+  double capillary_wavenumber = 370.0;
   bool allow_extrapolation = false;
 };
 
@@ -117,6 +127,7 @@ struct Spectrum {
   // Spreading.
   double mitsuyasu_peak_spread = 0.0;
   double swell = 0.0;
+  SwellModel swell_model = SwellModel::lutz;
   double spread_blend = 1.0;
   bool printed_spreading = false;
 };
@@ -138,10 +149,14 @@ bool is_cos_2s_family(SpreadingModel m);
 
 SpreadingModel default_spreading(SpectrumModel m);
 DispersionKind default_dispersion(SpectrumModel m);
+// Whether these settings read capillary_wavenumber k_m: the capillary dispersion (Alimardanov
+// eq. 2.9), the Unified spectrum and the Unified spreading (their c(k), F_m and c_m, Gamper §3.4).
+bool capillary_wavenumber_used(const SpectrumSettings& s);
 
-// The names of kSpectrumModels, kSpreadingModels, kDispersionKinds.
+// The names of kSpectrumModels, kSpreadingModels, kDispersionKinds, kSwellModels.
 std::string_view to_string(SpectrumModel m);
 std::string_view to_string(SpreadingModel m);
 std::string_view to_string(DispersionKind d);
+std::string_view to_string(SwellModel m);
 
 }  // namespace oceanref

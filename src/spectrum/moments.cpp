@@ -99,11 +99,13 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
   return m;
 }
 
-SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
-                                  const QuadratureTolerance& tolerance) {
+namespace {
+// ∫_{k_lo}^{k_hi} k² Ψ(k) ∫ g(θ − φ) D(k, θ) dθ dk for a weight g of the angle to the wind.
+double band_direction_moment(const Spectrum& s, double k_lo, double k_hi,
+                             const std::function<double(double)>& weight, const char* name,
+                             const QuadratureTolerance& tolerance, double inner_absolute = 0.0) {
   OCEANREF_EXPECTS(k_lo >= 0.0, "a band starts at a wavenumber >= 0, got " + std::to_string(k_lo));
-  SlopeVariance out;
-  if (!(k_hi > k_lo)) return out;
+  if (!(k_hi > k_lo)) return 0.0;
   std::vector<double> b{k_lo};
   for (const double k : wavenumber_breakpoints(s, k_hi)) {
     if (k > k_lo && k < k_hi) b.push_back(k);
@@ -112,29 +114,58 @@ SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
   if (std::isinf(k_hi) && !(b[b.size() - 2] > 0.0)) b.insert(b.end() - 1, 1.0);
   QuadratureTolerance inner = tolerance;
   inner.relative = tolerance.relative * 0.1;
+  inner.absolute = inner_absolute;
   const double phi = s.wind_direction;
-  auto moment = [&](bool upwind) {
-    const QuadratureResult r = integrate(
-        [&](double k) {
-          const double psi = wavenumber_spectrum(s, k);
-          if (psi == 0.0) return 0.0;
-          return k * k * psi *
-                 integrate_over_direction(
-                     s, k,
-                     [&](double theta) {
-                       const double c = upwind ? math::cos(theta - phi) : math::sin(theta - phi);
-                       return c * c;
-                     },
-                     inner)
-                     .value;
+  const QuadratureResult r = integrate(
+      [&](double k) {
+        const double psi = wavenumber_spectrum(s, k);
+        if (psi == 0.0) return 0.0;
+        return k * k * psi *
+               integrate_over_direction(
+                   s, k, [&](double theta) { return weight(theta - phi); }, inner)
+                   .value;
+      },
+      b, tolerance);
+  require_converged(r, name);
+  return r.value;
+}
+}  // namespace
+
+SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
+                                  const QuadratureTolerance& tolerance) {
+  const auto cos2 = [](double t) { return math::cos(t) * math::cos(t); };
+  const auto sin2 = [](double t) { return math::sin(t) * math::sin(t); };
+  return {band_direction_moment(s, k_lo, k_hi, cos2, "upwind slope variance", tolerance),
+          band_direction_moment(s, k_lo, k_hi, sin2, "crosswind slope variance", tolerance)};
+}
+
+JacobianMoments band_jacobian_moments(const Spectrum& s, double k_lo, double k_hi,
+                                      const QuadratureTolerance& tolerance) {
+  // c^a s^b of the angle to the wind, a + b = 4.
+  const auto term = [&](int a, const char* name, const QuadratureTolerance& tol,
+                        double inner_absolute) {
+    return band_direction_moment(
+        s, k_lo, k_hi,
+        [a](double t) {
+          const math::SinCos cs = math::sincos(t);
+          double v = 1.0;
+          for (int i = 0; i < 4; ++i) v *= i < a ? cs.cos : cs.sin;
+          return v;
         },
-        b, tolerance);
-    require_converged(r, upwind ? "upwind slope variance" : "crosswind slope variance");
-    return r.value;
+        name, tol, inner_absolute);
   };
-  out.upwind = moment(true);
-  out.crosswind = moment(false);
-  return out;
+  JacobianMoments m;
+  m.aaaa = term(4, "Jacobian moment along^4", tolerance, 0.0);
+  m.aacc = term(2, "Jacobian moment along^2 across^2", tolerance, 0.0);
+  m.cccc = term(0, "Jacobian moment across^4", tolerance, 0.0);
+  // The odd ones vanish for a spreading symmetric about the wind: each integral to an absolute
+  // error (relative to the band's slope variance; inside, to |g| ≤ 1 times ∫D dθ = 1) instead of
+  // a relative one it could not meet.
+  QuadratureTolerance odd = tolerance;
+  odd.absolute = std::fmax(odd.absolute, tolerance.relative * (m.aaaa + 2.0 * m.aacc + m.cccc));
+  m.aaac = term(3, "Jacobian moment along^3 across", odd, 0.1 * tolerance.relative);
+  m.accc = term(1, "Jacobian moment along across^3", odd, 0.1 * tolerance.relative);
+  return m;
 }
 
 }  // namespace oceanref

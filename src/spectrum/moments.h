@@ -46,6 +46,12 @@ SpectralMoments spectral_moments(const Spectrum& s, double k_max,
 SlopeVariance band_slope_variance(const Spectrum& s, double k_lo, double k_hi,
                                   const QuadratureTolerance& tolerance = {});
 
+// The displacement-gradient moments (spectrum/slope_variance.h) of the waves with
+// k_lo ≤ |k| ≤ k_hi: ∫ k² Ψ(k) ∫ c^a s^b D dθ dk with c = cos(θ − φ), s = sin(θ − φ), a + b = 4
+// (a wave's P k_a^a k_c^b/k² in the continuous form). Unscaled by choppiness.
+JacobianMoments band_jacobian_moments(const Spectrum& s, double k_lo, double k_hi,
+                                      const QuadratureTolerance& tolerance = {});
+
 // ∫_{−π}^{π} g(θ) D(k, θ) dθ with θ the absolute direction, split at the wind direction.
 QuadratureResult integrate_over_direction(const Spectrum& s, double k,
                                           const std::function<double(double)>& weight,

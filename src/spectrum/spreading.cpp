@@ -90,6 +90,14 @@ double horvath_swell_spread(double omega, double omega_p, double swell) {
   return 16.0 * t * swell * swell;
 }
 
+// Δs = 16 tanh(min(ω/ω_p, 20)) ξ²  (Alimardanov Algorithm 2, line 1): the ratio the other way
+// round from Lutz eq. 29, so swell narrows the high-frequency side; 0 at ω = 0.
+double alimardanov_swell_spread(double omega, double omega_p, double swell) {
+  if (swell == 0.0) return 0.0;
+  const double t = math::tanh(std::fmin(omega / omega_p, 20.0));
+  return 16.0 * t * swell * swell;
+}
+
 // (2/π) cos²θ on the forward half-plane |θ| ≤ π/2, 0 behind: the cos² partner of the spread
 // blend (Alimardanov Algorithm 2), restricted so that ∫D dθ = 1 (see FORMULAS.md).
 double forward_cos2_spreading(double theta) {

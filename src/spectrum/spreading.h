@@ -18,6 +18,7 @@ double hasselmann_spread(double omega, double omega_p, double wind_speed, double
 double mastin_spread(double omega, double omega_p);
 double gamper_spread(double omega, double omega_p);
 double horvath_swell_spread(double omega, double omega_p, double swell);
+double alimardanov_swell_spread(double omega, double omega_p, double swell);
 double forward_cos2_spreading(double theta);
 double spread_blend(double theta, double cos_2s, double blend);
 

@@ -80,6 +80,12 @@ double unified_short_wave_alpha(double friction_velocity, double c_m) {
   return 1e-2 * (friction_velocity < c_m ? 1.0 + l : 1.0 + 3.0 * l);
 }
 
+// c_m = 0.23 √(370/k_m) m/s: Gamper §3.4's c_m = 0.23 m/s is the minimum phase speed, at k = k_m,
+// of ω² = gk(1 + (k/k_m)²), c_min = √(2g/k_m) ∝ k_m^−½; exactly 0.23 at k_m = 370 (FORMULAS).
+double unified_min_phase_speed(double capillary_wavenumber) {
+  return kUnifiedMinPhaseSpeed * std::sqrt(kUnifiedCapillaryWavenumber / capillary_wavenumber);
+}
+
 // B = ½ α (c_ref/c) F: B_l with (α_p, c_p, F_p), B_h with (α_m, c_m, F_m) (Gamper §3.4).
 double unified_curvature_term(double alpha, double reference_speed, double phase_speed,
                               double side_effect) {
@@ -108,7 +114,7 @@ double unified(double k, double phase_speed, const UnifiedParameters& p) {
       p.long_wave_alpha, p.peak_phase_speed, phase_speed,
       unified_long_wave_side_effect(k, p.peak_wavenumber, p.inverse_wave_age, lj));
   const double b_h =
-      unified_curvature_term(p.short_wave_alpha, kUnifiedMinPhaseSpeed, phase_speed,
+      unified_curvature_term(p.short_wave_alpha, p.min_phase_speed, phase_speed,
                              unified_short_wave_side_effect(k, p.capillary_wavenumber, lj));
   return (b_l + b_h) / (k * k * k);
 }

@@ -114,7 +114,7 @@ LatticeTerm lattice_term(Field f) {
 
 EvolvedCascade evolve_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
                               double time) {
-  return {spectrum_at_time(low, time), spectrum_at_time(high, time)};
+  return {spectrum_at_time(low, time), spectrum_at_time(high, time), time};
 }
 
 std::array<double, kFieldCount> direct_sum(const PatternSpectrum& low, const PatternSpectrum& high,

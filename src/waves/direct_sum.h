@@ -20,6 +20,7 @@ namespace oceanref {
 struct EvolvedCascade {
   std::vector<Complex> low;
   std::vector<Complex> high;
+  double time = 0.0;  // t [s] (a Gerstner wave set, waves/gerstner.h, is summed at it)
 };
 EvolvedCascade evolve_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time);
 

@@ -72,6 +72,7 @@ FootprintAxes footprint_axes(const Footprint& f, double c, double s) {
 struct ModeWeight {
   double k_along = 0.0, k_across = 0.0;  // the wavevector in the wind frame [rad/m]
   double along = 0.0, across = 0.0;      // Σ|h|²k_along², Σ|h|²k_across² [1]
+  JacobianMoments jacobian;              // Σ u²|h|² k_a^a k_c^b/k² (a + b = 4) [1]
 };
 
 // The bracket of V for one mode: (1 − ŵ²) + (ŵ − T)².
@@ -85,7 +86,8 @@ const PatternSpectrum& slope_pattern(const CascadeSpectra& c, ShadingNormals nor
   return normals == ShadingNormals::surface ? c.low : c.high;
 }
 
-// Calls visit(k_along, k_across, |h|²) for every mode with |h| > 0 of the frame's slope patterns.
+// Calls visit(k_along, k_across, |h|², u) for every mode with |h| > 0 of the frame's slope
+// patterns (u the choppiness of its cascade).
 template <class Visit>
 void for_each_mode(const Ocean& ocean, double time, ShadingNormals normals, const Visit& visit) {
   const double c = math::cos(ocean.spectrum.wind_direction);
@@ -101,7 +103,7 @@ void for_each_mode(const Ocean& ocean, double time, ShadingNormals normals, cons
         const double power = v.re * v.re + v.im * v.im;
         if (power == 0.0) continue;
         const double kx = wave_index(a, n) * dk, kz = wave_index(b, n) * dk;
-        visit(c * kx + s * kz, -s * kx + c * kz, power);
+        visit(c * kx + s * kz, -s * kx + c * kz, power, cascade.choppiness);
       }
     }
   }
@@ -111,6 +113,7 @@ void for_each_mode(const Ocean& ocean, double time, ShadingNormals normals, cons
 std::vector<ModeWeight> binned_modes(const Ocean& ocean, double time, ShadingNormals normals) {
   struct Bin {
     double weight = 0.0, k_along = 0.0, k_across = 0.0, along = 0.0, across = 0.0;
+    JacobianMoments jacobian;
   };
   double smallest = std::numeric_limits<double>::infinity();
   for (const CascadeSpectra& c : ocean.cascades) {
@@ -118,7 +121,7 @@ std::vector<ModeWeight> binned_modes(const Ocean& ocean, double time, ShadingNor
   }
   const double origin = std::floor(log2_of(smallest) * kBinsPerOctave) - 1.0;
   std::vector<Bin> bins;
-  for_each_mode(ocean, time, normals, [&](double ka, double kc, double power) {
+  for_each_mode(ocean, time, normals, [&](double ka, double kc, double power, double u) {
     if (kc < 0.0 || (kc == 0.0 && ka < 0.0)) {
       ka = -ka;
       kc = -kc;
@@ -137,11 +140,13 @@ std::vector<ModeWeight> binned_modes(const Ocean& ocean, double time, ShadingNor
     bin.k_across += weight * kc;
     bin.along += power * ka * ka;
     bin.across += power * kc * kc;
+    bin.jacobian = bin.jacobian + jacobian_moments_of_mode(ka, kc, u * u * power);
   });
   std::vector<ModeWeight> modes;
   for (const Bin& bin : bins) {
     if (bin.weight == 0.0) continue;
-    modes.push_back({bin.k_along / bin.weight, bin.k_across / bin.weight, bin.along, bin.across});
+    modes.push_back(
+        {bin.k_along / bin.weight, bin.k_across / bin.weight, bin.along, bin.across, bin.jacobian});
   }
   return modes;
 }
@@ -189,7 +194,8 @@ std::pair<int, int> level_grids(double size, int low_resolution, int high_resolu
 }
 
 Ocean filtered_ocean(const Ocean& ocean, double radius) {
-  Ocean out{ocean.spectrum, {}, ocean.filter, ocean.synthesis, ocean.tiling, ocean.noise};
+  OCEANREF_EXPECTS(!ocean.gerstner, "a footprint filter of an FFT ocean");
+  Ocean out{ocean.spectrum, {}, ocean.filter, ocean.synthesis, ocean.tiling, ocean.noise, {}};
   for (const CascadeSpectra& c : ocean.cascades) {
     CascadeSpectra f;
     const auto [low, high] = level_grids(c.low.pattern.size, c.low.pattern.resolution,
@@ -227,13 +233,15 @@ std::size_t table_index(int radius, int ratio, int angle) {
 }
 
 FootprintVarianceTable variance_table(const Ocean& ocean, double time, ShadingNormals normals,
-                                      const std::vector<double>& radii, int threads) {
+                                      const std::vector<double>& radii, bool jacobian,
+                                      int threads) {
   const std::vector<ModeWeight> modes = binned_modes(ocean, time, normals);
   FootprintVarianceTable t;
   t.first_radius_variance = radii[1] * radii[1];
   // Up to λ₁ = (2 r_L)² = r_1²·4^L.
   t.radius_nodes = 2 * static_cast<int>(radii.size() - 1) + kRadiusOffset + 1;
   t.values.resize(table_index(t.radius_nodes, 0, 0));
+  if (jacobian) t.jacobian.resize(t.values.size());
   parallel_for(t.radius_nodes, threads, [&](int r) {
     const double major = std::ldexp(t.first_radius_variance, r - kRadiusOffset);
     const LevelBlend read = level_blend(radii, major);
@@ -246,13 +254,16 @@ FootprintVarianceTable variance_table(const Ocean& ocean, double time, ShadingNo
         const FootprintQuadratic sigma(FootprintAxes{
             major, std::ldexp(major, 2 * (q - (kRatioNodes - 1))), kPi * a / kAngleNodes});
         SlopeVariance v;
+        JacobianMoments j;
         for (std::size_t m = 0; m < modes.size(); ++m) {
           const double loss =
               footprint_loss(sigma.exponent(modes[m].k_along, modes[m].k_across), transfer[m]);
           v.upwind += modes[m].along * loss;
           v.crosswind += modes[m].across * loss;
+          if (jacobian) j = j + scaled(modes[m].jacobian, loss);
         }
         t.values[table_index(r, q, a)] = v;
+        if (jacobian) t.jacobian[table_index(r, q, a)] = j;
       }
     }
   });
@@ -288,7 +299,7 @@ double blend_transfer(const std::vector<double>& radii, const LevelBlend& b, dou
 }
 
 FootprintFilter make_footprint_filter(const Ocean& ocean, double time, Interpolation mode,
-                                      ShadingNormals normals, int threads) {
+                                      ShadingNormals normals, bool jacobian, int threads) {
   const ReferenceFpEnvironment fp;
   FootprintFilter f;
   std::vector<double> sizes;
@@ -306,7 +317,7 @@ FootprintFilter make_footprint_filter(const Ocean& ocean, double time, Interpola
       level.grids = synthesize_ocean(level.ocean, time, 1);
     }
   });
-  f.variance = variance_table(ocean, time, normals, f.radii, threads);
+  f.variance = variance_table(ocean, time, normals, f.radii, jacobian, threads);
   return f;
 }
 
@@ -387,12 +398,14 @@ DisplacedPoint filtered_displaced_point(const Ocean& ocean,
           blend(first.z, second.z, w)};
 }
 
-SlopeVariance footprint_slope_variance(const FootprintFilter& filter, const Footprint& f) {
+namespace {
+// The table's `values` (one per node) at footprint f: trilinear between nodes, below node 0 of the
+// radius axis that node's value scaled by λ₁/λ₁(node 0) (V ∝ λ₁ as λ₁ → 0).
+template <class T>
+T table_value(const FootprintFilter& filter, const std::vector<T>& values, const Footprint& f) {
   const FootprintVarianceTable& t = filter.variance;
   const FootprintAxes axes = footprint_axes(f, filter.wind_cos, filter.wind_sin);
   if (!(axes.major > 0.0)) return {};
-  // Radius: the node position, and below node 0 that node's value scaled by λ₁/λ₁(node 0)
-  // (V ∝ λ₁ as λ₁ → 0).
   const double first = std::ldexp(t.first_radius_variance, -kRadiusOffset);
   double position = log2_of(axes.major / first);
   double scale = 1.0;
@@ -410,30 +423,39 @@ SlopeVariance footprint_slope_variance(const FootprintFilter& filter, const Foot
   const int q0 = std::min(static_cast<int>(ratio), kRatioNodes - 2);
   const int a0 = std::min(static_cast<int>(angle), kAngleNodes - 1);
   const double wr = position - r0, wq = ratio - q0, wa = angle - a0;
-  SlopeVariance v;
+  T v{};
   for (int i = 0; i < 8; ++i) {
     const int dr = i & 1, dq = (i >> 1) & 1, da = (i >> 2) & 1;
     const double w =
         (dr != 0 ? wr : 1.0 - wr) * (dq != 0 ? wq : 1.0 - wq) * (da != 0 ? wa : 1.0 - wa);
-    const SlopeVariance& node = t.values[table_index(r0 + dr, q0 + dq, (a0 + da) % kAngleNodes)];
-    v.upwind += w * node.upwind;
-    v.crosswind += w * node.crosswind;
+    v = v + scaled(values[table_index(r0 + dr, q0 + dq, (a0 + da) % kAngleNodes)], w);
   }
-  return {scale * v.upwind, scale * v.crosswind};
+  return scaled(v, scale);
+}
+}  // namespace
+
+SlopeVariance footprint_slope_variance(const FootprintFilter& filter, const Footprint& f) {
+  return table_value(filter, filter.variance.values, f);
 }
 
-SlopeVariance footprint_slope_variance_exact(const Ocean& ocean, double time,
-                                             ShadingNormals normals,
-                                             const std::vector<double>& radii, const Footprint& f) {
+JacobianMoments footprint_jacobian_moments(const FootprintFilter& filter, const Footprint& f) {
+  OCEANREF_EXPECTS(!filter.variance.jacobian.empty(),
+                   "a footprint filter made with its Jacobian moments");
+  return table_value(filter, filter.variance.jacobian, f);
+}
+
+FootprintResidual footprint_residual_exact(const Ocean& ocean, double time, ShadingNormals normals,
+                                           const std::vector<double>& radii, const Footprint& f) {
   const FootprintQuadratic sigma(footprint_axes(f, math::cos(ocean.spectrum.wind_direction),
                                                 math::sin(ocean.spectrum.wind_direction)));
   const LevelBlend read = level_blend(radii, footprint_major_variance(f));
-  SlopeVariance v;
-  for_each_mode(ocean, time, normals, [&](double ka, double kc, double power) {
+  FootprintResidual v;
+  for_each_mode(ocean, time, normals, [&](double ka, double kc, double power, double u) {
     const double loss =
         footprint_loss(sigma.exponent(ka, kc), blend_transfer(radii, read, math::hypot(ka, kc)));
-    v.upwind += power * ka * ka * loss;
-    v.crosswind += power * kc * kc * loss;
+    v.slopes.upwind += power * ka * ka * loss;
+    v.slopes.crosswind += power * kc * kc * loss;
+    v.jacobian = v.jacobian + jacobian_moments_of_mode(ka, kc, u * u * power * loss);
   });
   return v;
 }

@@ -24,6 +24,7 @@
 #include "spectrum/slope_variance.h"
 #include "waves/ocean.h"
 #include "waves/surface.h"
+#include "waves/whitecaps.h"
 
 namespace oceanref {
 
@@ -65,6 +66,9 @@ struct FootprintVarianceTable {
   double first_radius_variance = 0.0;  // r_1² [m²]
   int radius_nodes = 0;
   std::vector<SlopeVariance> values;  // [(radius·kRatioNodes + ratio)·kAngleNodes + angle]
+  // The same loss for the displacement gradient's moments, Σ u²|h|² k_a^a k_c^b/k² [(1 − ŵ²) +
+  // (ŵ − T)²] (waves/whitecaps.h), per node; only when the filter is made for whitecaps.
+  std::vector<JacobianMoments> jacobian;
 };
 
 struct FootprintFilter {
@@ -77,9 +81,9 @@ struct FootprintFilter {
 // The filter of the frame at time t for the renderer's interpolation and normals (the slopes of
 // the N_l patterns for `surface` normals, of the N_h patterns otherwise, as slope_budget).
 // Levels and table entries are independent tasks on up to `threads` threads (the same bits for
-// any count).
+// any count). `jacobian`: also tabulate the displacement gradient's moments (whitecaps).
 FootprintFilter make_footprint_filter(const Ocean& ocean, double time, Interpolation mode,
-                                      ShadingNormals normals, int threads);
+                                      ShadingNormals normals, bool jacobian, int threads);
 
 // Bytes the filter of `settings` holds at most (its levels' spectra and fields, the table).
 double footprint_filter_bytes(const WaveSettings& settings);
@@ -105,9 +109,16 @@ DisplacedPoint filtered_displaced_point(const Ocean& ocean,
 
 // V(Σ) per wind axis from the table.
 SlopeVariance footprint_slope_variance(const FootprintFilter& filter, const Footprint& f);
-// V(Σ) summed over every mode of the frame without bins or table (for tests).
-SlopeVariance footprint_slope_variance_exact(const Ocean& ocean, double time,
-                                             ShadingNormals normals,
-                                             const std::vector<double>& radii, const Footprint& f);
+// The displacement gradient's moments under footprint Σ about the read fields (× u² per cascade),
+// from the table (a filter made with `jacobian`): with the read det J they give the whitecap
+// coverage of the footprint (waves/whitecaps.h).
+JacobianMoments footprint_jacobian_moments(const FootprintFilter& filter, const Footprint& f);
+// Both summed over every mode of the frame without bins or table (for tests).
+struct FootprintResidual {
+  SlopeVariance slopes;
+  JacobianMoments jacobian;
+};
+FootprintResidual footprint_residual_exact(const Ocean& ocean, double time, ShadingNormals normals,
+                                           const std::vector<double>& radii, const Footprint& f);
 
 }  // namespace oceanref

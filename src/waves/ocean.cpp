@@ -17,6 +17,7 @@ double default_minimum_wavelength(SpectrumModel model) {
 }
 
 double wave_grid_bytes(const WaveSettings& settings) {
+  if (settings.model == WaveModel::gerstner) return 0.0;  // no grids (the set is small)
   const double high = static_cast<double>(settings.resolution) * settings.resolution;
   const double low = static_cast<double>(settings.low_resolution) * settings.low_resolution;
   // h0, 1/k and ω (PatternSpectrum); h(k, t) and the packed transform; the transform's input
@@ -71,7 +72,13 @@ NoiseBlend resolve_noise(const WaveSettings& settings, const Ocean& ocean, doubl
 
 Ocean realize_ocean(const WaveSettings& settings, int threads) {
   const ReferenceFpEnvironment fp;
-  Ocean ocean{make_spectrum(settings.spectrum), {}, {}, settings.synthesis, {}, {}};
+  Ocean ocean{make_spectrum(settings.spectrum), {}, {}, settings.synthesis, {}, {}, {}};
+  if (settings.model == WaveModel::gerstner) {
+    OCEANREF_EXPECTS(settings.synthesis == Synthesis::periodic,
+                     "a Gerstner wave set is summed anywhere (no tiling or noise)");
+    ocean.gerstner = draw_gerstner_waves(ocean.spectrum, settings.gerstner, settings.seed);
+    return ocean;
+  }
   if (settings.synthesis == Synthesis::tiling_and_blending) ocean.tiling = resolve_tiling(settings);
   if (settings.realization == Realization::mastin) {
     ocean.filter = make_mastin_filter(ocean.spectrum, settings.mastin);
@@ -139,7 +146,7 @@ std::array<double, kFieldCount> cascade_from_grids(const CascadeFields& f, doubl
 namespace {
 void expect_evolved(const Ocean& ocean, const std::vector<EvolvedCascade>& evolved) {
   OCEANREF_EXPECTS(
-      evolved.size() == ocean.cascades.size(),
+      evolved.size() == ocean.cascades.size() + (ocean.gerstner ? 1 : 0),
       "one evolved spectrum per cascade (evolve_ocean): " + std::to_string(evolved.size()) +
           " for " + std::to_string(ocean.cascades.size()));
 }
@@ -155,6 +162,11 @@ PointFields exemplar_sum(const Ocean& ocean, const std::vector<CascadeFields>& f
                 mode == Interpolation::direct ? direct_sum(c.low, c.high, evolved[i], x, z)
                                               : cascade_from_grids(fields[i], x, z, mode),
                 c.choppiness);
+  }
+  if (ocean.gerstner) {
+    OCEANREF_EXPECTS(mode == Interpolation::direct, "a Gerstner ocean is read directly");
+    add_cascade(sum, gerstner_raw_fields(*ocean.gerstner, x, z, evolved.back().time),
+                ocean.gerstner->choppiness);
   }
   return sum;
 }
@@ -180,6 +192,9 @@ PointFields combine_at(const Ocean& ocean, const std::vector<CascadeFields>& fie
 
 double height_bound(const Ocean& ocean) {
   double bound = 0.0;
+  if (ocean.gerstner) {  // |η| ≤ ΣA, |D| ≤ ΣA
+    for (const GerstnerWave& w : ocean.gerstner->waves) bound += w.amplitude;
+  }
   for (const CascadeSpectra& c : ocean.cascades) {
     for (const Complex& h : c.low.h0) bound += abs(h);  // η and D live on the low grid
   }
@@ -205,6 +220,7 @@ std::vector<EvolvedCascade> evolve_ocean(const Ocean& ocean, double time) {
   for (const CascadeSpectra& c : ocean.cascades) {
     evolved.push_back(evolve_cascade(c.low, c.high, time));
   }
+  if (ocean.gerstner) evolved.push_back({{}, {}, time});
   return evolved;
 }
 
@@ -281,6 +297,11 @@ std::vector<PointFields> combine_on_footprint(const Ocean& ocean,
     }
   }
   return out;
+}
+
+int steady_foam_steps(double decay, double time_step) {
+  OCEANREF_EXPECTS(decay > 0.0 && time_step > 0.0, "foam that decays over a positive time step");
+  return static_cast<int>(std::floor(1.0 / (decay * time_step))) + 2;
 }
 
 AccumulatedFoam accumulate_foam(const Ocean& ocean, double time, const FoamSequence& sequence,

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/choice.h"
@@ -11,6 +12,7 @@
 #include "waves/cascades.h"
 #include "waves/direct_sum.h"
 #include "waves/fields.h"
+#include "waves/gerstner.h"
 #include "waves/interpolation.h"
 #include "waves/mastin.h"
 #include "waves/noise.h"
@@ -27,8 +29,18 @@ inline constexpr std::array<Choice<Realization>, 2> kRealizations{{
     {Realization::mastin, "mastin"},
 }};
 
+// The wave model (`waves.model`): the FFT ocean of cascades (Gamper) or a Gerstner wave set drawn
+// from the same spectrum and summed explicitly (Vincevičius §1.2.1; waves/gerstner.h).
+enum class WaveModel { fft, gerstner };
+inline constexpr std::array<Choice<WaveModel>, 2> kWaveModels{{
+    {WaveModel::fft, "fft"},
+    {WaveModel::gerstner, "gerstner"},
+}};
+
 struct WaveSettings {
   std::uint64_t seed = 1;
+  WaveModel model = WaveModel::fft;
+  GerstnerDraw gerstner;  // model gerstner: the draw (its choppiness is choppiness[0])
   Realization realization = Realization::gaussian;
   MastinSettings mastin;  // the filter and animation of the mastin realization
   SpectrumSettings spectrum;
@@ -69,6 +81,10 @@ struct Ocean {
   Synthesis synthesis = Synthesis::periodic;
   Tiling tiling;
   NoiseBlend noise;  // noise_blended
+  // WaveModel::gerstner: the wave set, and no cascades. It has no grids: it is read by direct
+  // summation only (Interpolation::direct), at the time of the last evolved entry
+  // (evolve_ocean appends one for it).
+  std::optional<GerstnerWaves> gerstner;
 };
 
 // The raw sums at (x, z) (before finish_combination) of the ocean's synthesis, from the
@@ -113,7 +129,8 @@ Tiling resolve_tiling(const WaveSettings& settings);
 // Raw fields of every cascade at time t.
 std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads);
 
-// h(k, t) of every cascade, for direct summation at many points of one frame.
+// h(k, t) of every cascade, for direct summation at many points of one frame (and, for a
+// Gerstner ocean, one more entry that holds only the time t).
 std::vector<EvolvedCascade> evolve_ocean(const Ocean& ocean, double time);
 
 // The combined fields at (x, z) from the FFT grids (bilinear between nodes) and by direct
@@ -151,11 +168,18 @@ std::vector<PointFields> combine_on_footprint(const Ocean& ocean,
 
 // Foam accumulated over a sequence (Vincevičius listing 2.4): the negative-Jacobian indicator
 // of the frames t − steps·Δt, …, t folded with accumulated_foam, starting from no foam.
+inline constexpr int kMaxFoamSteps = 10000;
 struct FoamSequence {
   double decay = 1.0;             // per second
   double time_step = 1.0 / 30.0;  // Δt [s]
   int steps = 0;                  // earlier frames; 0: the instantaneous indicator
 };
+// The number of earlier instants after which the foam no longer depends on when its accumulation
+// started ("steps": "steady"): every step removes at least δ = decay·Δt (accumulated_foam with a
+// current value ≤ 1), so whatever stood before is below every current value (≥ 0) after
+// ⌊1/δ⌋ + 1 steps — one more covers the rounding of the subtractions. From then on the result is
+// the same bits as an accumulation started at any earlier time (tested). decay > 0.
+int steady_foam_steps(double decay, double time_step);
 struct AccumulatedFoam {
   std::vector<std::vector<double>> cascades;  // per cascade, on its high-resolution grid
   std::vector<double> combined;               // on cascade 0's footprint

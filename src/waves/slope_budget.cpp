@@ -72,6 +72,28 @@ SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wav
   SlopeVarianceBudget b;
   b.floor_wavenumber = slope_floor_wavenumber(minimum_wavelength);
   const double phi = ocean.spectrum.wind_direction;
+  if (ocean.gerstner) {
+    // The set draws [k_min, k_max]: what it carries is its own mean square slope, read exactly
+    // (direct summation); unresolved is the spectrum above k_max plus the draw's deficit in its
+    // band. The waves longer than 2π/k_min are neither drawn nor roughness (not in σ²).
+    const GerstnerWaves& g = *ocean.gerstner;
+    b.cutoff_wavenumber = std::fmin(g.max_wavenumber, b.floor_wavenumber);
+    b.moment = band_slope_variance(ocean.spectrum, 0.0, b.floor_wavenumber);
+    b.above_cutoff = band_slope_variance(ocean.spectrum, b.cutoff_wavenumber, b.floor_wavenumber);
+    b.discrete = b.resolved = gerstner_slope_variance(g, phi);
+    const SlopeVariance band =
+        band_slope_variance(ocean.spectrum, g.min_wavenumber, b.cutoff_wavenumber);
+    b.sampling = {band.upwind - b.discrete.upwind, band.crosswind - b.discrete.crosswind};
+    b.unresolved = {b.above_cutoff.upwind + b.sampling.upwind,
+                    b.above_cutoff.crosswind + b.sampling.crosswind};
+    for (double* v : {&b.unresolved.upwind, &b.unresolved.crosswind}) {
+      if (*v < kMinimumSlopeVariance) {
+        *v = kMinimumSlopeVariance;
+        b.clamped = true;
+      }
+    }
+    return b;
+  }
   const auto pattern_of = [&](const CascadeSpectra& c) -> const PatternSpectrum& {
     return normals == ShadingNormals::surface ? c.low : c.high;
   };

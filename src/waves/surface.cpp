@@ -47,13 +47,21 @@ PointFields exemplar_surface_sum(const Ocean& ocean, const std::vector<CascadeFi
                                  : cascade_surface_from_grids(fields[i], x, z, mode);
     add_cascade_surface(sum, s, c.choppiness);
   }
+  if (ocean.gerstner) {  // ∂D_z/∂x = ∂D_x/∂z for every wave
+    OCEANREF_EXPECTS(mode == Interpolation::direct, "a Gerstner ocean is read directly");
+    CascadeSurface s;
+    s.raw = gerstner_raw_fields(*ocean.gerstner, x, z, evolved.back().time);
+    s.ddz_dx = s.raw[static_cast<std::size_t>(Field::ddx_dz)];
+    add_cascade_surface(sum, s, ocean.gerstner->choppiness);
+  }
   return sum;
 }
 
 void expect_fields(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                    const std::vector<EvolvedCascade>& evolved, Interpolation mode) {
   OCEANREF_EXPECTS(
-      (mode == Interpolation::direct ? evolved.size() : fields.size()) == ocean.cascades.size(),
+      (mode == Interpolation::direct ? evolved.size() : fields.size()) ==
+          ocean.cascades.size() + (mode == Interpolation::direct && ocean.gerstner ? 1 : 0),
       "one field set (or evolved spectrum, for direct) per cascade");
 }
 }  // namespace

@@ -1,0 +1,315 @@
+// Whitecaps as Dupuy & Bruneton 2012 define them (waves/whitecaps.h): the moments of the
+// displacement gradient against the slope variances they must add up to, the mean and variance
+// of det J against Monte Carlo draws of the Gaussian residual, the coverage against the closed
+// form on a synthetic Gaussian sea, and the renderer's coverage converging as spp grows.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/math.h"
+#include "raster/renderer.h"
+#include "scene/scene.h"
+#include "shading/ocean_lighting.h"
+#include "spectrum/moments.h"
+#include "waves/random.h"
+#include "waves/whitecaps.h"
+
+using namespace oceanref;
+
+namespace {
+
+// The displacement-gradient residual of a set of waves in the wind frame, each ξ_n √P_n times
+// [[k_a²/k, k_a k_c/k], [k_a k_c/k, k_c²/k]] with ξ_n standard normal: its moments.
+struct WhitecapWave {
+  double kx, kz, power;
+};
+JacobianMoments whitecap_moments_of(const std::vector<WhitecapWave>& waves, double c, double s) {
+  JacobianMoments m;
+  for (const WhitecapWave& w : waves) {
+    const double ka = c * w.kx + s * w.kz, kc = -s * w.kx + c * w.kz;
+    const double k2 = ka * ka + kc * kc;
+    m.aaaa += w.power * ka * ka * ka * ka / k2;
+    m.aaac += w.power * ka * ka * ka * kc / k2;
+    m.aacc += w.power * ka * ka * kc * kc / k2;
+    m.accc += w.power * ka * kc * kc * kc / k2;
+    m.cccc += w.power * kc * kc * kc * kc / k2;
+  }
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("whitecaps: the displacement-gradient moments of a band add up to its slope variances") {
+  // aaaa + aacc = ∫k²Ψ∫cos²D and aacc + cccc = ∫k²Ψ∫sin²D (cos⁴ + cos²sin² = cos²); the
+  // spreading is symmetric about the wind, so the odd moments vanish. Both sides are adaptive
+  // quadratures to the default relative tolerance (1e-8 per integral): 1e-6 leaves room.
+  SpectrumSettings settings;
+  settings.wind_speed = 12.0;
+  settings.wind_direction = 0.7;
+  const Spectrum spectrum = make_spectrum(settings);
+  const double lo = 2.0, hi = 40.0;
+  const JacobianMoments m = band_jacobian_moments(spectrum, lo, hi);
+  const SlopeVariance v = band_slope_variance(spectrum, lo, hi);
+  CHECK(m.aaaa + m.aacc == doctest::Approx(v.upwind).epsilon(1e-6));
+  CHECK(m.aacc + m.cccc == doctest::Approx(v.crosswind).epsilon(1e-6));
+  CHECK(std::abs(m.aaac) < 1e-9 * m.aaaa);
+  CHECK(std::abs(m.accc) < 1e-9 * m.aaaa);
+  // An empty band has none.
+  const JacobianMoments none = band_jacobian_moments(spectrum, hi, lo);
+  CHECK(none.aaaa == 0.0);
+  CHECK(none.cccc == 0.0);
+}
+
+TEST_CASE("whitecaps: mean and variance of det J against Monte Carlo draws of the residual") {
+  // μ = det A and σ² from the closed form (waves/whitecaps.h) against 400 000 draws of
+  // det(A + M′) with M′ = Σ ξ_n √P_n G_n. The sample mean's standard error is σ/√N ≈ 0.0016σ and
+  // the sample variance's about σ²√(2/N)·(kurtosis factor < 2) ≈ 0.5%: 5 standard errors.
+  const std::vector<WhitecapWave> waves{{0.8, 0.1, 0.2},  {0.3, -0.9, 0.15}, {-0.5, 0.6, 0.1},
+                                        {1.4, 0.7, 0.06}, {0.2, 1.1, 0.08},  {-1.0, -0.2, 0.12}};
+  const Deformation a{0.7, 0.2, -0.1, 1.3};
+  const double phi = 0.6;
+  const double c = math::cos(phi), s = math::sin(phi);
+  const JacobianMoments m = whitecap_moments_of(waves, c, s);
+  const double det_a = a.xx * a.zz - a.xz * a.zx;
+  const double variance = jacobian_variance(a, m, c, s);
+  const int draws = 400000;
+  double sum = 0.0, squares = 0.0;
+  for (int i = 0; i < draws; ++i) {
+    double xx = a.xx, xz = a.xz, zx = a.zx, zz = a.zz;
+    for (std::size_t n = 0; n < waves.size(); ++n) {
+      const WhitecapWave& w = waves[n];
+      const double k = std::hypot(w.kx, w.kz);
+      const double xi =
+          standard_normal_pair(component_key(7u, 0, i, static_cast<std::int32_t>(n))).real *
+          std::sqrt(w.power);
+      xx += xi * w.kx * w.kx / k;
+      xz += xi * w.kx * w.kz / k;
+      zx += xi * w.kx * w.kz / k;
+      zz += xi * w.kz * w.kz / k;
+    }
+    const double j = xx * zz - xz * zx;
+    sum += j;
+    squares += j * j;
+  }
+  const double mean = sum / draws;
+  const double sample_variance = squares / draws - mean * mean;
+  CHECK(std::abs(mean - det_a) < 5.0 * std::sqrt(variance / draws));
+  CHECK(sample_variance == doctest::Approx(variance).epsilon(5.0 * 2.0 * std::sqrt(2.0 / draws)));
+  // The quadratic term matters here: without it the variance is off by more than the tolerance.
+  const double quadratic = m.aaaa * m.cccc + 3.0 * m.aacc * m.aacc - 4.0 * m.aaac * m.accc;
+  MESSAGE("quadratic term / variance = ", quadratic / variance);
+  CHECK(quadratic > 0.02 * variance);
+  // The variance does not depend on the frame the moments are written in: the same waves in a
+  // frame turned by 1 rad give the same σ².
+  const double c2 = math::cos(phi + 1.0), s2 = math::sin(phi + 1.0);
+  CHECK(jacobian_variance(a, whitecap_moments_of(waves, c2, s2), c2, s2) ==
+        doctest::Approx(variance).epsilon(1e-12));
+}
+
+TEST_CASE("whitecaps: the coverage matches the closed form on a synthetic Gaussian sea") {
+  // Waves along x only: D_z = 0, so det J = 1 + u ∂D_x/∂x exactly — a sum of 400 independent
+  // random-phase waves, Gaussian to the central limit. The share of 100 000 positions with
+  // det J < ε against W = ½ erfc((μ − ε)/√(2σ²)) with μ = 1 and σ² = jacobian_variance of the
+  // waves' moments (× u²). Tolerance 0.01 absolute: the positions' sampling error of a share
+  // near 0.1–0.3 (≈ 0.0015), the finite wave count's departure from Gaussian (measured below
+  // 0.004).
+  const int count = 400;
+  std::vector<double> k(count), amplitude(count), phase(count);
+  std::vector<WhitecapWave> waves;
+  for (int n = 0; n < count; ++n) {
+    const std::uint64_t key = component_key(11u, 1, n, 0);
+    k[static_cast<std::size_t>(n)] = 0.05 + 2.0 * uniform_open(random_word(key, 0));
+    amplitude[static_cast<std::size_t>(n)] =
+        0.04 / k[static_cast<std::size_t>(n)] * (0.5 + uniform_open(random_word(key, 1)));
+    phase[static_cast<std::size_t>(n)] = 2.0 * std::numbers::pi * uniform_open(random_word(key, 2));
+    // ∂D_x/∂x = Σ A k cos(kx + φ): variance Σ ½A²k² = Σ P k²·k²/k² with P = ½A².
+    const double a = amplitude[static_cast<std::size_t>(n)];
+    waves.push_back({k[static_cast<std::size_t>(n)], 0.0, 0.5 * a * a});
+  }
+  for (const double u : {-1.0, -1.6}) {
+    for (const double threshold : {0.0, 0.3}) {
+      CAPTURE(u);
+      CAPTURE(threshold);
+      const JacobianMoments m = scaled(whitecap_moments_of(waves, 1.0, 0.0), u * u);
+      const double expected = whitecap_coverage(1.0, jacobian_variance({}, m, 1.0, 0.0), threshold);
+      int below = 0;
+      const int positions = 100000;
+      for (int i = 0; i < positions; ++i) {
+        const double x = 3000.0 * uniform_open(random_word(component_key(12u, 2, i, 0), 0));
+        double derivative = 0.0;
+        for (std::size_t n = 0; n < waves.size(); ++n) {
+          derivative += amplitude[n] * k[n] * math::cos(k[n] * x + phase[n]);
+        }
+        if (1.0 + u * derivative < threshold) ++below;
+      }
+      const double share = static_cast<double>(below) / positions;
+      CHECK(expected > 0.02);
+      CHECK(std::abs(share - expected) < 0.01);
+    }
+  }
+}
+
+TEST_CASE("whitecaps: the unresolved moments carry the unresolved slope variance times u²") {
+  const auto scene = parse_scene(nlohmann::json::parse(R"({"seed": 3,
+      "waves": {"spectrum": {"wind_speed": 14}, "cascades": {"sizes": [90, 21]}, "resolution": 32,
+                "choppiness": [-0.6, -1.1]},
+      "shading": {"whitecaps": true, "accuracy": "fast"},
+      "render": {"width": 16, "height": 9}})"));
+  const Ocean ocean = realize_ocean(scene.waves, 1);
+  const SlopeVarianceBudget b =
+      slope_variance_budget(ocean, scene.waves.minimum_wavelength, 0.0, scene.shading.interpolation,
+                            scene.shading.normals);
+  const JacobianMoments m = unresolved_jacobian_moments(ocean, b);
+  // The finest cascade (21 m) has u = −1.1.
+  CHECK(m.aaaa + 2.0 * m.aacc + m.cccc ==
+        doctest::Approx(1.21 * (b.unresolved.upwind + b.unresolved.crosswind)).epsilon(1e-12));
+  // Its shape is the spectrum's above the cut-off.
+  const JacobianMoments above =
+      band_jacobian_moments(ocean.spectrum, b.cutoff_wavenumber, b.floor_wavenumber);
+  CHECK(m.aaaa / m.cccc == doctest::Approx(above.aaaa / above.cccc).epsilon(1e-12));
+  CHECK(m.aacc / m.cccc == doctest::Approx(above.aacc / above.cccc).epsilon(1e-12));
+  const RenderJob job = scene_render_job(scene, ocean, 1);
+  CHECK(job.unresolved_jacobian.aaaa == m.aaaa);
+}
+
+TEST_CASE("whitecaps: the coverage of the pixels converges as the samples per pixel grow") {
+  // Only the whitecaps lit (sun, sky and sea off): the foam layer is Σ W·L_foam over the
+  // samples. Its RMS difference from 16 × 16 samples per pixel must fall as S grows; measured
+  // 4.74, 1.55, 0.74 and 0.42 times the reference's mean at S = 1, 2, 4, 8 (the foam is sparse:
+  // a few pixels hold it).
+  const auto scene = parse_scene(nlohmann::json::parse(R"({"seed": 5, "time": 1.5,
+      "waves": {"spectrum": {"wind_speed": 20}, "cascades": {"sizes": [60, 17]},
+                "resolution": 64, "choppiness": -1.4},
+      "camera": {"position": [0, 14, 0], "look_at": [0, 0, 40]},
+      "grid": {"columns": 128, "rows": 128},
+      "shading": {"whitecaps": true, "sun": false, "sky": false, "sea": false, "accuracy": "fast"},
+      "render": {"width": 32, "height": 18, "samples_per_pixel": 1}})"));
+  const Ocean ocean = realize_ocean(scene.waves, 1);
+  RenderJob job = scene_render_job(scene, ocean, 2);
+  job.layers = true;
+  const SlopeVariance unresolved = unresolved_slope_variance(job, scene.waves);
+  const auto foam_of = [&](int s) {
+    job.samples_per_axis = s;
+    return render(job, unresolved).foam;
+  };
+  const std::vector<Vec3> reference = foam_of(16);
+  double mean = 0.0;
+  for (const Vec3& v : reference) mean += v[1] / static_cast<double>(reference.size());
+  REQUIRE(mean > 0.0);
+  // The RMS difference of the foam layer from the reference, relative to its mean, at S = 1 … 8.
+  const auto errors_of = [&](const char* what) {
+    std::vector<double> errors;
+    for (const int s : {1, 2, 4, 8}) {
+      const std::vector<Vec3> foam = foam_of(s);
+      double squares = 0.0;
+      for (std::size_t i = 0; i < foam.size(); ++i) {
+        squares += (foam[i][1] - reference[i][1]) * (foam[i][1] - reference[i][1]);
+      }
+      errors.push_back(std::sqrt(squares / static_cast<double>(foam.size())) / mean);
+      MESSAGE(what, "S = ", s, ": RMS error of the foam layer / its mean = ", errors.back());
+    }
+    return errors;
+  };
+  const std::vector<double> errors = errors_of("");
+  for (std::size_t i = 1; i < errors.size(); ++i) CHECK(errors[i] < 0.75 * errors[i - 1]);
+  CHECK(errors.back() < 0.2 * errors.front());
+  // Footprint filtering: each sample's coverage is that of its cell — the read det J and the
+  // variance the filter removed, taken as Gaussian (Dupuy & Bruneton's model). Where a cell holds
+  // resolved waves whose det J has lighter tails than a Gaussian (two cascades of few large waves;
+  // towards the horizon the cells are long), the coverage is biased high: measured 13.2, 11.1, 8.7
+  // and 7.2 times the reference's mean at S = 1, 2, 4, 8 (this test prints them). The cells
+  // shrink as S grows, so the error must fall with S towards the same limit.
+  job.footprint_filtering = true;
+  const std::vector<double> filtered = errors_of("footprint filtering, ");
+  for (std::size_t i = 1; i < filtered.size(); ++i) CHECK(filtered[i] < 0.9 * filtered[i - 1]);
+}
+
+namespace {
+// A small choppy sea that folds, with foam that decays in 7 steps of 0.05 s.
+Scene whitecap_foam_scene(const char* steps) {
+  auto j = nlohmann::json::parse(R"({"seed": 9, "time": 2.0,
+      "waves": {"spectrum": {"wind_speed": 20}, "cascades": {"sizes": [60, 17]}, "resolution": 64,
+                "choppiness": -4.0, "foam": {"decay": 4, "time_step": 0.05}},
+      "camera": {"position": [0, 10, 0], "look_at": [0, 0, 30]},
+      "grid": {"columns": 64, "rows": 64},
+      "shading": {"whitecaps": true, "sun": false, "sky": false, "sea": false,
+                  "accuracy": "fast", "interpolation": "direct"},
+      "render": {"width": 24, "height": 14, "samples_per_pixel": 1}})");
+  j["waves"]["foam"]["steps"] = nlohmann::json::parse(steps);
+  return parse_scene(j);
+}
+}  // namespace
+
+TEST_CASE("foam: \"steady\" steps make the accumulation independent of where it started") {
+  // δ = 4 · 0.05 = 0.2: ⌊1/δ⌋ + 2 = 7 steps.
+  const Scene scene = whitecap_foam_scene(R"("steady")");
+  CHECK(scene.foam.steps == 7);
+  const Ocean ocean = realize_ocean(scene.waves, 1);
+  const AccumulatedFoam steady =
+      accumulate_foam(ocean, 2.0, scene.foam, ShadingNormals::surface, 2);
+  FoamSequence longer = scene.foam;
+  longer.steps += 5;
+  const AccumulatedFoam from_earlier =
+      accumulate_foam(ocean, 2.0, longer, ShadingNormals::surface, 2);
+  CHECK(steady.combined == from_earlier.combined);  // the same bits
+  CHECK(steady.cascades == from_earlier.cascades);
+  // ... and the accumulation matters: fewer steps give less foam somewhere.
+  FoamSequence shorter = scene.foam;
+  shorter.steps = 1;
+  const AccumulatedFoam recent = accumulate_foam(ocean, 2.0, shorter, ShadingNormals::surface, 2);
+  double more = 0.0;
+  for (std::size_t i = 0; i < recent.combined.size(); ++i) {
+    CHECK(recent.combined[i] <= steady.combined[i]);
+    more += steady.combined[i] - recent.combined[i];
+  }
+  CHECK(more > 0.0);
+  // The scene's errors name the key.
+  CHECK_THROWS_WITH_AS(whitecap_foam_scene(R"("forever")"), doctest::Contains("waves.foam.steps"),
+                       SceneError);
+  auto j = nlohmann::json::parse(R"({"waves": {"foam": {"decay": 0, "steps": "steady"}}})");
+  CHECK_THROWS_WITH_AS(parse_scene(j), doctest::Contains("decay > 0"), SceneError);
+}
+
+TEST_CASE("foam: the renderer's accumulated whitecaps equal what `fields` accumulates") {
+  // With the variance taken away (no unresolved waves) and the threshold 0, W is the indicator
+  // of det J < 0 and its accumulation the one accumulate_foam folds on cascade 0's footprint
+  // lattice — there from direct sums on the lattice, here from the renderer's reading at a point.
+  // The two sums differ by rounding: a node may differ only where |det J| < 1e-9.
+  const Scene scene = whitecap_foam_scene("5");
+  const Ocean ocean = realize_ocean(scene.waves, 1);
+  RenderJob job = scene_render_job(scene, ocean, 2);
+  job.unresolved_jacobian = {};
+  const RenderFrame frame = prepare_frame(job, {1e-10, 1e-10});
+  REQUIRE(frame.foam_history.size() == 5);
+  const AccumulatedFoam fields =
+      accumulate_foam(ocean, scene.time, scene.foam, scene.shading.normals, 2);
+  const int n = ocean.cascades.front().high.pattern.resolution;
+  REQUIRE(fields.combined.size() == static_cast<std::size_t>(n * n));
+  const double spacing = ocean.cascades.front().high.pattern.size / n;
+  int foamy = 0, differ = 0;
+  for (int b = 0; b < n; b += 2) {  // every fourth node (the test's time)
+    for (int a = 0; a < n; a += 2) {
+      const double x = a * spacing, z = b * spacing;
+      const PointFields f =
+          combine_shading_at(ocean, frame.fields.grids, frame.fields.evolved, x, z,
+                             scene.shading.interpolation, scene.shading.normals);
+      const double render = foam_coverage_at(frame, f, x, z, {});
+      const double expected = fields.combined[static_cast<std::size_t>(b * n + a)];
+      if (expected > 0.0) ++foamy;
+      if (render != expected && std::abs(f.jacobian) > 1e-9) ++differ;
+    }
+  }
+  CHECK(foamy > 20);
+  CHECK(differ == 0);
+  // The accumulation never lowers the coverage below the instant's.
+  const PointFields f = combine_shading_at(ocean, frame.fields.grids, frame.fields.evolved, 3.0,
+                                           4.0, scene.shading.interpolation, scene.shading.normals);
+  RenderFrame instant = frame;
+  instant.foam_history.clear();
+  CHECK(foam_coverage_at(frame, f, 3.0, 4.0, job.unresolved_jacobian) >=
+        foam_coverage_at(instant, f, 3.0, 4.0, job.unresolved_jacobian));
+}
