@@ -4,7 +4,8 @@
 #   figure_tool_start "$0" "$@"   --help prints the caller's header comment and exits; sets
 #                                 `threads` (the first argument, default all cores; anything else
 #                                 is a usage error) and `bin` (OCEANREF_BIN resolved by the caller
-#                                 before its cd, or build/src/oceanref, built when missing)
+#                                 before its cd, or build/src/oceanref, built when missing) and
+#                                 `work` (a temporary folder, removed on exit)
 #   measured_on THREADS SECONDS   "Measured DATE on CPU (THREADS threads), commit C[ with
 #                                 uncommitted changes], SECONDS s."
 figure_tool_start() {
@@ -25,6 +26,8 @@ figure_tool_start() {
     bin=$PWD/build/src/oceanref
     [ -x "$bin" ] || bash tools/build.sh build >&2
   fi
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
 }
 
 measured_on() {

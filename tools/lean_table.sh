@@ -17,8 +17,6 @@ self=$(realpath -- "$0")
 cd "$(dirname "$0")/.."
 source tools/figure_tool.sh
 figure_tool_start "$self" "$@"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 for scene in fig8_periodic fig8_tiling_and_blending fig7_flow_uniform_60; do
   "$bin" bench lean --scene "reference/lutz/scenes/$scene.json" --threads "$threads" \
     --footprints 12 --samples 128 >"$work/$scene.csv"

@@ -36,8 +36,6 @@ source tools/figure_tool.sh
 figure_tool_start "$self" "$@"
 out_dir=${out_dir:-$PWD/reference/lutz}
 mkdir -p "$out_dir"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 scenes=reference/lutz/scenes
 acf() {
   local name=$1

@@ -19,8 +19,6 @@ self=$(realpath -- "$0")
 cd "$(dirname "$0")/.."
 source tools/figure_tool.sh
 figure_tool_start "$self" "$@"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 out=build/sequence
 rm -rf "$out"
 mkdir -p "$out"

@@ -18,8 +18,6 @@ self=$(realpath -- "$0")
 cd "$(dirname "$0")/.."
 source tools/figure_tool.sh
 figure_tool_start "$self" "$@"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 out=reference/shading_models
 mkdir -p "$out"
 for model in bruneton four_term; do

@@ -560,6 +560,18 @@ glm::dvec3 vector3(const Section& s, const char* key, glm::dvec3 fallback, doubl
   return {v[0], v[1], v[2]};
 }
 
+// A linear RGB colour: three numbers in [0, 1] (an error names the channel's index).
+Vec3 colour(const Section& s, const char* key, const Vec3& fallback) {
+  const glm::dvec3 v = vector3(s, key, {fallback[0], fallback[1], fallback[2]}, 1.0);
+  for (glm::length_t i = 0; i < 3; ++i) {
+    if (v[i] < 0.0) {
+      throw SceneError(s.where(key) + "[" + std::to_string(i) + "]",
+                       "must be in [0, 1], got " + shortest_number(v[i]));
+    }
+  }
+  return {v.x, v.y, v.z};
+}
+
 // waves.synthesis and the waves.tiling section (waves/tiling.h).
 void parse_synthesis(const Section& waves, WaveSettings& w) {
   w.synthesis = choice(waves, "synthesis", kSyntheses, "periodic");
@@ -606,14 +618,7 @@ std::vector<ObjectSettings> parse_objects(const Section& top) {
     object.scale = o.number("scale", object.scale, 1e-6, 1e4);
     if (o.has("material")) {
       const Section m(o.at("material"), o.where("material"));
-      const glm::dvec3 a = vector3(m, "albedo", {0.5, 0.5, 0.5}, 1.0);
-      for (glm::length_t c = 0; c < 3; ++c) {
-        if (a[c] < 0.0) {
-          throw SceneError(m.where("albedo") + "[" + std::to_string(c) + "]",
-                           "must be in [0, 1], got " + shortest_number(a[c]));
-        }
-        object.material.albedo[static_cast<std::size_t>(c)] = a[c];
-      }
+      object.material.albedo = colour(m, "albedo", {0.5, 0.5, 0.5});
     }
     objects.push_back(std::move(object));
   }
@@ -681,26 +686,16 @@ void parse_rendering(const Section& top, Scene& scene) {
   if (shading.has("four_term")) {
     const Section f(shading.at("four_term"), "shading.four_term");
     FourTermParameters& p = h.four_term;
-    const auto colour = [&](const char* key, const Vec3& fallback) {
-      const glm::dvec3 v = vector3(f, key, {fallback[0], fallback[1], fallback[2]}, 1.0);
-      for (glm::length_t i = 0; i < 3; ++i) {
-        if (v[i] < 0.0) {
-          throw SceneError(f.where(key) + "[" + std::to_string(i) + "]",
-                           "must be in [0, 1], got " + shortest_number(v[i]));
-        }
-      }
-      return Vec3{v.x, v.y, v.z};
-    };
     p.ambient_intensity = f.number("ambient_intensity", p.ambient_intensity, 0.0, 1e3);
-    p.ambient_colour = colour("ambient_colour", p.ambient_colour);
+    p.ambient_colour = colour(f, "ambient_colour", p.ambient_colour);
     p.air_bubble_density = f.number("air_bubble_density", p.air_bubble_density, 0.0, 1e3);
-    p.air_bubble_colour = colour("air_bubble_colour", p.air_bubble_colour);
+    p.air_bubble_colour = colour(f, "air_bubble_colour", p.air_bubble_colour);
     p.subsurface_height_intensity =
         f.number("subsurface_height_intensity", p.subsurface_height_intensity, 0.0, 1e3, " per m");
     p.subsurface_view_intensity =
         f.number("subsurface_view_intensity", p.subsurface_view_intensity, 0.0, 1e3);
-    p.water_scattering_colour = colour("water_scattering_colour", p.water_scattering_colour);
-    p.specular_colour = colour("specular_colour", p.specular_colour);
+    p.water_scattering_colour = colour(f, "water_scattering_colour", p.water_scattering_colour);
+    p.specular_colour = colour(f, "specular_colour", p.specular_colour);
     p.shininess = f.number("shininess", p.shininess, 1.0, 1e4);
     p.reflection_intensity = f.number("reflection_intensity", p.reflection_intensity, 0.0, 1e3);
     validate(p);
@@ -730,15 +725,7 @@ void parse_rendering(const Section& top, Scene& scene) {
       shading.number("tolerance", h.tolerance, kMinLightingTolerance, kMaxLightingTolerance);
   h.sky_order = shading.integer("sky_order", h.sky_order, 1, 128);
   h.sun_order = shading.integer("sun_order", h.sun_order, 0, 64);
-  const glm::dvec3 sea =
-      vector3(shading, "sea_colour", {h.sea_colour[0], h.sea_colour[1], h.sea_colour[2]}, 1.0);
-  for (glm::length_t i = 0; i < 3; ++i) {
-    if (sea[i] < 0.0) {
-      throw SceneError("shading.sea_colour[" + std::to_string(i) + "]",
-                       "must be in [0, 1], got " + shortest_number(sea[i]));
-    }
-  }
-  h.sea_colour = {sea.x, sea.y, sea.z};
+  h.sea_colour = colour(shading, "sea_colour", h.sea_colour);
   h.foam_albedo = shading.number("foam_albedo", h.foam_albedo, 0.0, 1.0);
   h.whitecap_threshold = shading.number("whitecap_threshold", h.whitecap_threshold, -10.0, 10.0);
   h.interpolation = choice(shading, "interpolation", kInterpolations, "bicubic");

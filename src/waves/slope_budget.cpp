@@ -66,6 +66,18 @@ double slope_floor_wavenumber(double minimum_wavelength) {
                                   : kDefaultMaxWavenumber * 10.0;
 }
 
+namespace {
+// σ² is held at kMinimumSlopeVariance per axis (`clamped` then set).
+void clamp_unresolved(SlopeVarianceBudget& b) {
+  for (double* v : {&b.unresolved.upwind, &b.unresolved.crosswind}) {
+    if (*v < kMinimumSlopeVariance) {
+      *v = kMinimumSlopeVariance;
+      b.clamped = true;
+    }
+  }
+}
+}  // namespace
+
 SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wavelength,
                                           double time, Interpolation mode, ShadingNormals normals,
                                           int threads) {
@@ -86,12 +98,7 @@ SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wav
     b.sampling = {band.upwind - b.discrete.upwind, band.crosswind - b.discrete.crosswind};
     b.unresolved = {b.above_cutoff.upwind + b.sampling.upwind,
                     b.above_cutoff.crosswind + b.sampling.crosswind};
-    for (double* v : {&b.unresolved.upwind, &b.unresolved.crosswind}) {
-      if (*v < kMinimumSlopeVariance) {
-        *v = kMinimumSlopeVariance;
-        b.clamped = true;
-      }
-    }
+    clamp_unresolved(b);
     return b;
   }
   const auto pattern_of = [&](const CascadeSpectra& c) -> const PatternSpectrum& {
@@ -141,12 +148,7 @@ SlopeVarianceBudget slope_variance_budget(const Ocean& ocean, double minimum_wav
   b.interpolation_loss = difference(b.discrete, b.resolved);
   b.sampling = difference(difference(b.moment, b.above_cutoff), b.discrete);
   b.unresolved = difference(b.moment, b.resolved);
-  for (double* v : {&b.unresolved.upwind, &b.unresolved.crosswind}) {
-    if (*v < kMinimumSlopeVariance) {
-      *v = kMinimumSlopeVariance;
-      b.clamped = true;
-    }
-  }
+  clamp_unresolved(b);
   return b;
 }
 
