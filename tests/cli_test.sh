@@ -15,6 +15,8 @@ checks=0
 fail() {
   echo "FAIL: $*" >&2
   failures=$((failures + 1))
+  # tools/mutation.py: the first failure is enough.
+  if [ -n "${OCEANREF_TESTS_FAIL_FAST:-}" ]; then exit 1; fi
 }
 
 # expect CODE PATTERN ARGS... : exit code CODE; stderr (for CODE 2: exactly one line) matches the

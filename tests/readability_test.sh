@@ -27,6 +27,8 @@ checks=0
 fail() {
   echo "FAIL: $*" >&2
   failures=$((failures + 1))
+  # tools/mutation.py: the first failure is enough.
+  if [ -n "${OCEANREF_TESTS_FAIL_FAST:-}" ]; then exit 1; fi
 }
 run() {  # run oceanref, failing the test if it does not exit 0
   "$bin" "$@" >"$tmp/run.out" 2>"$tmp/run.err" || fail "oceanref $* exited $?: $(cat "$tmp/run.err")"

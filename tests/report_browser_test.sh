@@ -20,6 +20,8 @@ failures=0
 fail() {
   echo "FAIL: $*" >&2
   failures=$((failures + 1))
+  # tools/mutation.py: the first failure is enough.
+  if [ -n "${OCEANREF_TESTS_FAIL_FAST:-}" ]; then exit 1; fi
 }
 
 # A failing comparison with several channels: the float32 backend with a dropped term.

@@ -249,3 +249,43 @@ TEST_CASE("golden suite: verify passes on a copy, fails naming the hash after a 
   CHECK(verify_golden(root, options).pass());
   std::filesystem::remove_all(root);
 }
+
+TEST_CASE(
+    "golden physics checks: a clean render passes; an inert key, a dark sky, a negative "
+    "term or foamless whitecaps fail") {
+  // A small sea under an open sky: 24 × 16 pixels, fast lighting, whitecaps that show foam.
+  nlohmann::json s = nlohmann::json::parse(R"({
+    "seed": 3, "waves": {"resolution": 16, "cascades": {"sizes": [40, 12]}, "choppiness": -1.5},
+    "camera": {"position": [0, 4, 0], "look_at": [0, 4, 50]},
+    "atmosphere": {"sun_zenith_deg": 60, "sun_azimuth_deg": 30},
+    "shading": {"accuracy": "fast", "whitecaps": true, "whitecap_threshold": 0.9},
+    "render": {"width": 24, "height": 16, "samples_per_pixel": 4}})");
+  const Scene scene = parse_scene(s);
+  RenderOutputOptions options;
+  options.threads = 2;
+  options.aov = true;
+  const RenderedImage clean = render_scene(scene, options).image;
+  CHECK(golden_physics_failures(scene, clean).empty());
+  const auto fails_with = [&](const Scene& sc, const RenderedImage& image,
+                              const std::string& what) {
+    const std::vector<std::string> failures = golden_physics_failures(sc, image);
+    REQUIRE(failures.size() >= 1);
+    CAPTURE(failures[0]);
+    CHECK(failures[0].find(what) != std::string::npos);
+  };
+  // The open sky: the top rows (the camera looks at the horizon) hold the Preetham sky exactly;
+  // one ulp more in one pixel is a failure.
+  RenderedImage sky = clean;
+  sky.radiance[static_cast<std::size_t>(2 * 24 + 5)][1] *= 1.0 + 1e-11;
+  fails_with(scene, sky, "the open sky at pixel (5, 2)");
+  RenderedImage negative = clean;
+  negative.sea[static_cast<std::size_t>(15 * 24 + 3)] = {-1.0, -1.0, -1.0};
+  fails_with(scene, negative, "sea at pixel (3, 15) has luminance -1");
+  RenderedImage foamless = clean;
+  for (Vec3& f : foamless.foam) f = {0.0, 0.0, 0.0};
+  fails_with(scene, foamless, "shading.whitecaps is on and no pixel shows foam");
+  // An inert key: the fetch of a Phillips spectrum.
+  s["waves"]["spectrum"] = {{"model", "phillips"}, {"fetch", 30000}};
+  const Scene inert = parse_scene(s);
+  fails_with(inert, clean, "waves.spectrum.fetch has no effect");
+}

@@ -12,7 +12,8 @@ every ctest entry except `golden`, with OCEANREF_TESTS_NO_GOLDENS=1 (the test ca
 tests that compare with reference/golden/manifest.json skip those comparisons). The unit tests
 run as shards of ~10 doctest cases; the first failing shard or script kills the mutant (a
 timeout, 3x the job's baseline time + 60 s, or a crash counts as a failure) and the others are
-stopped. A mutant survives when every job passes.
+stopped (the scripts stop at their first failure: OCEANREF_TESTS_FAIL_FAST=1). A mutant
+survives when every job passes.
 
 Mutation operators (on the code of src/*/*.cpp; comments, strings and preprocessor lines are
 never changed):
@@ -315,7 +316,8 @@ def start_job(job, work, timeout):
     tmp = os.path.join(work, "tmp", re.sub(r"\W", "_", job["name"]))
     shutil.rmtree(tmp, ignore_errors=True)
     os.makedirs(tmp)
-    env = dict(os.environ, TMPDIR=tmp, OCEANREF_TESTS_NO_GOLDENS="1", **job["env"])
+    env = dict(os.environ, TMPDIR=tmp, OCEANREF_TESTS_NO_GOLDENS="1", OCEANREF_TESTS_FAIL_FAST="1",
+               **job["env"])
     log = open(os.path.join(work, "tmp", re.sub(r"\W", "_", job["name"]) + ".log"), "w")
     proc = subprocess.Popen(job["cmd"], cwd=job["cwd"], env=env, stdout=log,
                             stderr=subprocess.STDOUT, start_new_session=True)
@@ -469,6 +471,7 @@ def main():
                 path = os.path.join(build, obj)
                 originals.setdefault(obj, open(path, "rb").read())
     kills_by_file = collections.defaultdict(collections.Counter)
+    kills_by_folder = collections.defaultdict(collections.Counter)
     kills = collections.Counter()
     results = []
     total = args.per_folder * len(folders)
@@ -493,7 +496,9 @@ def main():
             elif not build_all(build):
                 result["status"] = "invalid"
             else:
+                # The jobs that killed mutants of this file, of this folder, of any, first.
                 ordered = sorted(jobs, key=lambda j: (-kills_by_file[s["file"]][j["name"]],
+                                                      -kills_by_folder[folder][j["name"]],
                                                       -kills[j["name"]], baseline[j["name"]]))
                 failed, why, _, _ = run_tests(ordered, work, args.jobs, timeouts)
                 result["status"] = "killed" if failed else "survived"
@@ -501,6 +506,7 @@ def main():
                 if failed:
                     kills[failed] += 1
                     kills_by_file[s["file"]][failed] += 1
+                    kills_by_folder[folder][failed] += 1
                 scored += 1
             open(path, "w").write(original)
             result["seconds"] = time.time() - t0

@@ -1,6 +1,7 @@
 #include "conformance/golden.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -10,12 +11,112 @@
 #include "conformance/compare.h"
 #include "conformance/fields_output.h"
 #include "conformance/render_output.h"
+#include "core/format.h"
 #include "io/exr.h"
 #include "io/output_file.h"
 #include "io/sha256.h"
+#include "raster/camera.h"
 #include "scene/scene.h"
+#include "shading/tone_mapping.h"
+#include "sky/preetham.h"
 
 namespace oceanref {
+
+namespace {
+// The mean Preetham sky over the S × S sample rays of pixel (x, y), in sample order; false when
+// a ray comes within 2° of the sun (its disk is added there).
+bool open_sky_mean(const Camera& camera, const Sky& sky, int x, int y, int s, Vec3& mean) {
+  const double per_sample = 1.0 / (s * s);
+  const double cos_near_sun = std::cos(2.0 * 3.141592653589793 / 180.0);
+  mean = {};
+  for (int r = y * s; r < (y + 1) * s; ++r) {
+    for (int c = x * s; c < (x + 1) * s; ++c) {
+      const glm::dvec3 ray = ray_direction(camera, (c + 0.5) / s, (r + 0.5) / s);
+      const Vec3 d{ray.x, ray.y, ray.z};
+      if (dot(d, sky.sun_direction) > cos_near_sun) return false;
+      const Vec3 l = sky_radiance_rgb(sky, d);
+      for (std::size_t k = 0; k < 3; ++k) mean[k] += per_sample * l[k];
+    }
+  }
+  return true;
+}
+}  // namespace
+
+std::vector<std::string> golden_physics_failures(const Scene& scene, const RenderedImage& image) {
+  std::vector<std::string> failures;
+  for (const UnusedKey& u : scene.unused) {
+    failures.push_back(u.path + " has no effect (" + u.reason + ")");
+  }
+  const auto pixel = [&](std::size_t p) {
+    return "pixel (" + std::to_string(p % static_cast<std::size_t>(image.width)) + ", " +
+           std::to_string(p / static_cast<std::size_t>(image.width)) + ")";
+  };
+  // Linear sRGB channels may be negative for a colour outside its gamut (a grazing sun is
+  // redder than sRGB holds), so the energy bound is on luminance; an error is >= 0 per channel.
+  const std::pair<const char*, const std::vector<Vec3>*> terms[] = {{"radiance", &image.radiance},
+                                                                    {"sun", &image.sun},
+                                                                    {"sky", &image.sky},
+                                                                    {"sea", &image.sea},
+                                                                    {"foam", &image.foam}};
+  for (const auto& [name, values] : terms) {
+    for (std::size_t p = 0; p < values->size(); ++p) {
+      const Vec3& v = (*values)[p];
+      const double y = relative_luminance(v);
+      if (std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && y >= 0.0) continue;
+      failures.push_back(std::string(name) + " at " + pixel(p) + " has luminance " +
+                         format_number(y));
+    }
+  }
+  for (std::size_t p = 0; p < image.lighting_error.size(); ++p) {
+    for (const double v : image.lighting_error[p]) {
+      if (v >= 0.0 && std::isfinite(v)) continue;
+      failures.push_back("lighting_error at " + pixel(p) + " is " + format_number(v));
+      break;
+    }
+  }
+  double foam = 0.0;
+  for (std::size_t p = 0; p < image.coverage.size(); ++p) {
+    if (!(image.coverage[p] >= 0.0 && image.coverage[p] <= 1.0)) {
+      failures.push_back("coverage at " + pixel(p) + " is " + format_number(image.coverage[p]));
+    }
+    if (p < image.foam.size()) foam = std::max(foam, image.foam[p][1]);
+  }
+  if (scene.shading.whitecaps && !(foam > 0.0)) {
+    failures.push_back("shading.whitecaps is on and no pixel shows foam");
+  }
+  // Open sky: fixed-grid renders (adaptive sampling and Mastin's extra samples take other rays)
+  // without objects (the coverage counts the sea only).
+  if (scene.image.pixel_tolerance > 0.0 || scene.image.mastin_antialiasing > 0.0 ||
+      !scene.objects.empty()) {
+    return failures;
+  }
+  const Camera camera = scene_camera(scene);
+  const Sky sky = scene_sky(scene);
+  int checked = 0;
+  for (int y = 1; y + 1 < image.height; ++y) {
+    for (int x = 1; x + 1 < image.width; ++x) {
+      bool open = true;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          open = open &&
+                 image.coverage[static_cast<std::size_t>((y + dy) * image.width + x + dx)] == 0.0;
+        }
+      }
+      Vec3 mean;
+      if (!open || !open_sky_mean(camera, sky, x, y, image.samples_per_axis, mean)) continue;
+      ++checked;
+      const Vec3& got = image.radiance[static_cast<std::size_t>(y * image.width + x)];
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (std::fabs(got[k] - mean[k]) <= 1e-12 * mean[k]) continue;
+        failures.push_back(
+            "the open sky at " + pixel(static_cast<std::size_t>(y * image.width + x)) + " is " +
+            format_number(got[k]) + ", the Preetham sky over its rays " + format_number(mean[k]));
+        break;
+      }
+    }
+  }
+  return failures;
+}
 
 namespace {
 GoldenReport run(const std::filesystem::path& root, const GoldenOptions& options, bool update) {
@@ -48,9 +149,11 @@ GoldenReport run(const std::filesystem::path& root, const GoldenOptions& options
     // A converged golden (render.pixel_tolerance) carries its error layers, pixel_error and
     // lighting_error, for `compare --converged`, and the samples per pixel (the pixel hashes
     // cover R, G, B only, so the layers change no hash).
+    // The layers are rendered for golden_physics_failures; the stored image has them only for a
+    // converged golden.
     const bool converged = scene.image.pixel_tolerance > 0.0;
-    render_options.aov = converged;
-    const RenderedScene r = render_scene(scene, render_options);
+    render_options.aov = true;
+    RenderedScene r = render_scene(scene, render_options);
     // A Gerstner ocean has no wave grids: its golden is the image alone.
     const bool has_fields = scene.waves.model != WaveModel::gerstner;
     FieldsImage fields;
@@ -74,6 +177,15 @@ GoldenReport run(const std::filesystem::path& root, const GoldenOptions& options
       if (entry.value(key, "") != value) result.differs.push_back(key);
     }
     result.same = result.differs.empty();
+    result.physics = golden_physics_failures(scene, r.image);
+    if (!result.physics.empty()) {
+      ++report.invalid;
+      result.status = "INVALID";
+      report.scenes.push_back(std::move(result));
+      continue;
+    }
+    // The stored image (and the one a mismatch is compared with) has no layers unless converged.
+    if (!converged) r = scene_output(scene, std::move(r.image), false);
     if (update) {
       write_exr(image_path.string(), r.exr);
       if (has_fields) write_exr_parts(fields_path.string(), fields.parts);
@@ -135,6 +247,7 @@ std::string golden_text(const GoldenReport& report) {
   out << "name,status,pixel_sha256\n";
   for (const GoldenSceneResult& s : report.scenes) {
     out << s.name << ',' << s.status << ',' << s.pixel_sha256 << '\n';
+    for (const std::string& failure : s.physics) out << "# invalid: " << failure << '\n';
     if (s.differs.empty() || s.status != "MISMATCH") continue;
     out << "# differs:";
     for (const std::string& key : s.differs) out << ' ' << key;

@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "raster/renderer.h"
+#include "scene/scene.h"
+
 namespace oceanref {
 
 struct GoldenOptions {
@@ -32,13 +35,27 @@ struct GoldenSceneResult {
   // verify, on a mismatch: compare's table of the stored image against the new one, or
   // "# cannot compare with FILE: why".
   std::string comparison;
+  // golden_physics_failures of the render: a scene with any is "INVALID" (update writes nothing
+  // of it), whatever its hashes.
+  std::vector<std::string> physics;
 };
 
 struct GoldenReport {
   std::vector<GoldenSceneResult> scenes;
   int mismatches = 0;  // verify: scenes that differ (update: 0)
-  bool pass() const { return mismatches == 0; }
+  int invalid = 0;     // scenes whose render fails golden_physics_failures
+  bool pass() const { return mismatches == 0 && invalid == 0; }
 };
+
+// What a golden render must show besides its hashes, one line per failure (a hash cannot tell a
+// correct image from a bug, and `golden update` would bake a bug in): every key of the scene has
+// an effect (Scene::unused is empty: no feature is inert), a scene with whitecaps shows foam,
+// every radiance and lighting term is finite with luminance >= 0 (a channel of linear sRGB may be
+// negative outside its gamut: a grazing sun), every lighting error >= 0, the coverage in [0, 1],
+// and a pixel of open sky (no sea in it or around it, a fixed sample grid, no objects, away from
+// the sun) is the mean of the Preetham sky over its samples' rays, to 1e-12 relative. `image`
+// holds the layers.
+std::vector<std::string> golden_physics_failures(const Scene& scene, const RenderedImage& image);
 
 // Bad input: no or invalid manifest (`option` "root"), a scene of `only` not in it ("only").
 class GoldenInputError : public std::invalid_argument {
