@@ -43,7 +43,8 @@ def check(ok, what):
 
 
 def close(got, want, rel, what):
-    ok = abs(got - want) <= rel * abs(want)
+    got, want = float(got), float(want)  # JSON writes an infinity as "inf"
+    ok = got == want or abs(got - want) <= rel * abs(want)
     check(ok, f"{what}: oceanref gives {got!r}, expected {want!r} (relative tolerance {rel})")
 
 
@@ -388,6 +389,254 @@ check(sun_errors[1] < sun_errors[0], f"brdf --sun-order 8 not closer than 1: {su
 clear, hazy = brdf(*ref_args, "--turbidity", "2"), brdf(*ref_args, "--turbidity", "6")
 check(hazy["L_sun_incident.B"] < clear["L_sun_incident.B"], "brdf --turbidity 6 did not dim the sun")
 check(hazy["E_sky.R"] > clear["E_sky.R"], "brdf --turbidity 6 did not raise the red sky irradiance")
+
+
+# --- sky: Preetham 1999 (its appendix A.2), the sRGB primaries, the irradiance by quadrature ----
+
+def perez(theta, gamma, a, b, c, d, e):  # Preetham eq. 3
+    horizon = math.exp(b / math.cos(theta)) if math.cos(theta) > 0 else 0.0
+    return (1 + a * horizon) * (1 + c * math.exp(d * gamma) + e * math.cos(gamma) ** 2)
+
+
+def preetham_xyY(direction, turbidity, sun_zenith, sun_azimuth):
+    t = turbidity
+    coefficients = {
+        "Y": (0.1787 * t - 1.4630, -0.3554 * t + 0.4275, -0.0227 * t + 5.3251,
+              0.1206 * t - 2.5771, -0.0670 * t + 0.3703),
+        "x": (-0.0193 * t - 0.2592, -0.0665 * t + 0.0008, -0.0004 * t + 0.2125,
+              -0.0641 * t - 0.8989, -0.0033 * t + 0.0452),
+        "y": (-0.0167 * t - 0.2608, -0.0950 * t + 0.0092, -0.0079 * t + 0.2102,
+              -0.0441 * t - 1.6537, -0.0109 * t + 0.0529)}
+    ts = min(sun_zenith, math.pi / 2)
+    chi = (4 / 9 - t / 120) * (math.pi - 2 * ts)
+    zenith = {"Y": 1000 * ((4.0453 * t - 4.9710) * math.tan(chi) - 0.2155 * t + 2.4192)}
+    for name, m in (("x", ((0.00166, -0.00375, 0.00209, 0), (-0.02903, 0.06377, -0.03202, 0.00394),
+                           (0.11693, -0.21196, 0.06052, 0.25886))),
+                    ("y", ((0.00275, -0.00610, 0.00317, 0), (-0.04214, 0.08970, -0.04153, 0.00516),
+                           (0.15346, -0.26756, 0.06670, 0.26688)))):
+        th = (ts ** 3, ts ** 2, ts, 1.0)
+        zenith[name] = sum(tt * sum(mij * thj for mij, thj in zip(row, th))
+                           for tt, row in zip((t * t, t, 1.0), m))
+    d = unit(direction)
+    sun = np.array([math.sin(ts) * math.cos(sun_azimuth), math.cos(ts),
+                    math.sin(ts) * math.sin(sun_azimuth)])
+    gamma = math.acos(min(1.0, max(-1.0, float(np.dot(d, sun)))))
+    theta = math.acos(min(1.0, max(0.0, float(d[1]))))
+    return {k: zenith[k] * perez(theta, gamma, *coefficients[k]) / perez(0.0, ts, *coefficients[k])
+            for k in ("x", "y", "Y")}
+
+
+def xyz_from_xyY(x, y, big_y):
+    return np.array([x * big_y / y, big_y, (1 - x - y) * big_y / y])
+
+
+# linear sRGB from XYZ: the primaries' and D65's chromaticities (IEC 61966-2-1).
+primaries = np.column_stack([xyz_from_xyY(0.64, 0.33, 1), xyz_from_xyY(0.30, 0.60, 1),
+                             xyz_from_xyY(0.15, 0.06, 1)])
+white_scale = np.linalg.solve(primaries, xyz_from_xyY(0.3127, 0.3290, 1))
+XYZ_TO_SRGB = np.linalg.inv(primaries * white_scale)
+
+
+def sky_dir(direction, *args):
+    return oceanref("sky", *args, "--dir", ",".join(repr(float(v)) for v in direction))[0]
+
+
+for zenith_deg, azimuth_deg, turbidity in ((40, 0, 2.5), (70, 120, 2.5), (20, -60, 6), (85, 30, 9.5)):
+    args = ["--sun-zenith-deg", str(zenith_deg), "--sun-azimuth-deg", str(azimuth_deg),
+            "--turbidity", str(turbidity)]
+    for direction in ((0, 1, 0), (0.5, 0.5, 0.7), (-0.9, 0.2, 0.1), (0.1, 0.05, -1)):
+        row = sky_dir(direction, *args)
+        want = preetham_xyY(direction, turbidity, math.radians(zenith_deg),
+                            math.radians(azimuth_deg))
+        where = f"sky {' '.join(args)} --dir {direction}"
+        close(float(row["Y"]), want["Y"], 1e-9, where + ": Y")
+        close(float(row["chroma_x"]), want["x"], 1e-9, where + ": x")
+        close(float(row["chroma_y"]), want["y"], 1e-9, where + ": y")
+        rgb = XYZ_TO_SRGB @ xyz_from_xyY(want["x"], want["y"], want["Y"])
+        for c, value in zip("RGB", rgb):
+            close(float(row[c]), value, 1e-9, where + ": " + c)
+    # The horizontal irradiance: E = integral of L cos(theta) over the hemisphere, by the
+    # midpoint rule in (cos theta, phi) on 400 x 800 cells (the sun disk excluded: --irradiance is
+    # the sky's).
+    e = oceanref("sky", *args, "--irradiance")[0]
+    mu = (np.arange(400) + 0.5) / 400
+    phi = (np.arange(800) + 0.5) / 800 * 2 * math.pi
+    total = 0.0
+    for m in mu:
+        s_theta = math.sqrt(1 - m * m)
+        for p_ in phi[::8]:  # the azimuth on every 8th cell, weighted 8x: smooth in phi
+            total += preetham_xyY((s_theta * math.cos(p_), m, s_theta * math.sin(p_)), turbidity,
+                                  math.radians(zenith_deg), math.radians(azimuth_deg))["Y"] * m
+    total *= (1 / 400) * (2 * math.pi / 100)
+    close(float(e["E_Y"]), total, 2e-3, f"sky {' '.join(args)} --irradiance: E_Y")
+# --sun: the disk's angular radius and the transmittance form.
+sun = oceanref("sky", "--sun-zenith-deg", "40", "--sun")[0]
+close(float(sun["angular_radius_rad"]), math.radians(0.2667), 2e-3, "sky --sun: angular radius")
+printed = oceanref("sky", "--sun-zenith-deg", "40", "--sun", "--printed-transmittance")[0]
+check(float(printed["Y"]) != float(sun["Y"]), "sky --printed-transmittance changes nothing")
+check(float(oceanref("sky", "--sun-zenith-deg", "75", "--sun")[0]["Y"]) < float(sun["Y"]),
+      "sky --sun: a lower sun is not dimmer")
+# --size N -o: the hemisphere image, pixel (row, column) the direction at radius r = theta/(pi/2).
+import tempfile  # noqa: E402
+try:
+    import OpenImageIO as oiio
+except ImportError:
+    oiio = None
+if oiio is not None:
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "sky.exr")
+        subprocess.run([binary, "sky", "--sun-zenith-deg", "50", "--sun-azimuth-deg", "30",
+                        "--size", "16", "-o", path], check=True, capture_output=True)
+        image = oiio.ImageInput.open(path)
+        spec = image.spec()
+        pixels = image.read_image(0, 0, 0, spec.nchannels, "float")
+        image.close()
+        y_index = list(spec.channelnames).index("Y")
+        for row_, column in ((8, 8), (3, 10), (12, 2), (0, 0)):
+            u = (2 * column + 1) / 16 - 1
+            v = (2 * row_ + 1) / 16 - 1
+            r = math.hypot(u, v)
+            if r > 1:
+                check(pixels[row_, column, y_index] == 0, f"sky --size: ({row_}, {column}) outside "
+                                                          "the disk is not 0")
+                continue
+            zen, az = 0.5 * math.pi * r, math.atan2(v, u)
+            want = preetham_xyY((math.sin(zen) * math.cos(az), math.cos(zen),
+                                 math.sin(zen) * math.sin(az)), 2.5, math.radians(50),
+                                math.radians(30))["Y"]
+            close(float(pixels[row_, column, y_index]), want, 1e-6,
+                  f"sky --size 16: Y at ({row_}, {column})")
+
+
+# --- compare: every metric and threshold flag against the definitions (docs/BACKENDS.md) --------
+
+def write_rgb(path, pixels, names=("R", "G", "B")):
+    out = oiio.ImageOutput.create(path)
+    spec = oiio.ImageSpec(pixels.shape[1], pixels.shape[0], pixels.shape[2], "float")
+    spec.channelnames = names
+    out.open(path, spec)
+    out.write_image(pixels)
+    out.close()
+
+
+def ordered(f):  # float32 bits on one monotonic integer line (the ULP distance's)
+    i = f.view(np.int32).astype(np.int64)
+    return np.where(i < 0, -(i & 0x7FFFFFFF), i)
+
+
+def channel_metrics(g, c, a=0.0, r=0.0, floor=0.0, ulp=0):
+    g64, c64 = g.astype(np.float64).ravel(), c.astype(np.float64).ravel()
+    rms = math.sqrt(float(np.mean(g64 * g64)))
+    scale = np.maximum(np.abs(g64), floor * rms)
+    diff = np.abs(c64 - g64)
+    with np.errstate(divide="ignore"):
+        rel = np.where(diff == 0, 0.0, diff / scale)
+    ulps = np.abs(ordered(c.ravel()) - ordered(g.ravel()))
+    fails = ~(diff <= a + r * scale) & (ulps > ulp)
+    ranks = sorted(rel)
+    n = len(ranks)
+    pct = [ranks[min(max(math.ceil(q / 100 * n), 1), n) - 1] for q in (50, 90, 99, 99.9)]
+    return {"max_rel": float(rel.max()), "max_abs": float(diff.max()), "golden_rms": rms,
+            "max_ulp": int(ulps.max()), "failing": int(fails.sum()),
+            "rel_percentiles": pct + [float(rel.max())],
+            "rmse": math.sqrt(float(np.mean(diff * diff)))}
+
+
+def compare(*args, expect=None):
+    r = subprocess.run([binary, "compare", *map(str, args), "--format", "json"],
+                       capture_output=True, text=True)
+    if r.returncode not in (0, 1):
+        sys.exit(f"FAIL: oceanref compare {' '.join(map(str, args))}: {r.stderr}")
+    import json
+    result = json.loads(r.stdout)
+    if expect is not None:
+        check(r.returncode == expect, f"compare {' '.join(map(str, args))}: exit {r.returncode}, "
+                                      f"expected {expect}")
+    return {c["golden"]: c for c in result["parts"][0]["channels"]}, r.returncode
+
+
+if oiio is not None:
+    with tempfile.TemporaryDirectory() as tmp:
+        rng = np.random.default_rng(7)
+        g = rng.uniform(0.0, 2.0, (24, 32, 3)).astype(np.float32)
+        g[0, 0, 1] = 0.0  # a zero of the golden: the floor decides its scale
+        c = g.copy()
+        c[..., 0] *= (1 + rng.normal(0, 1e-3, (24, 32))).astype(np.float32)
+        c[..., 1] += rng.normal(0, 1e-4, (24, 32)).astype(np.float32)
+        c[3, 5, 2] = np.nextafter(c[3, 5, 2], np.float32(9), dtype=np.float32)  # one ULP
+        gp, cp = os.path.join(tmp, "g.exr"), os.path.join(tmp, "c.exr")
+        write_rgb(gp, g)
+        write_rgb(cp, c)
+        for flags, thresholds in (([], {}), (["--floor", "0.5"], {"floor": 0.5}),
+                                  (["--rel", "2e-3", "--floor", "0.1"], {"r": 2e-3, "floor": 0.1}),
+                                  (["--abs", "1e-4", "--floor", "0.1"], {"a": 1e-4, "floor": 0.1}),
+                                  (["--ulp", "1", "--floor", "0.1"], {"ulp": 1, "floor": 0.1})):
+            got, _ = compare(cp, gp, *flags)
+            for k, name in enumerate("RGB"):
+                want = channel_metrics(g[..., k], c[..., k], **thresholds)
+                for key in ("max_rel", "max_abs", "golden_rms", "rmse"):
+                    close(got[name][key], want[key], 1e-12, f"compare {' '.join(flags)}: {name} {key}")
+                for key in ("max_ulp", "failing"):
+                    check(got[name][key] == want[key], f"compare {' '.join(flags)}: {name} {key} "
+                                                       f"{got[name][key]}, expected {want[key]}")
+                for q, (a_, b_) in enumerate(zip(got[name]["rel_percentiles"],
+                                                 want["rel_percentiles"])):
+                    close(a_, b_, 1e-12, f"compare {' '.join(flags)}: {name} percentile {q}")
+        # The thresholds at their boundary: R's largest relative error passes --rel equal to it
+        # (|c - g| <= R s) and fails just below; --max-fail-share at the failing share.
+        worst = channel_metrics(g[..., 0], c[..., 0], floor=0.1)["max_rel"]
+        compare(cp, gp, "--channels", "R", "--floor", "0.1", "--rel", repr(worst * (1 + 1e-9)),
+                expect=0)
+        compare(cp, gp, "--channels", "R", "--floor", "0.1", "--rel", repr(worst * (1 - 1e-6)),
+                expect=1)
+        share = channel_metrics(g[..., 1], c[..., 1], r=5e-5, floor=0.1)["failing"] / g[..., 1].size
+        check(0 < share < 1, f"compare: the G channel's failing share {share} is not between 0 and 1")
+        compare(cp, gp, "--channels", "G", "--floor", "0.1", "--rel", "5e-5", "--max-fail-share",
+                repr(share), expect=0)
+        compare(cp, gp, "--channels", "G", "--floor", "0.1", "--rel", "5e-5", "--max-fail-share",
+                repr(share * 0.999), expect=1)
+        # --channels CANDIDATE=GOLDEN: the candidate's G against the golden's R.
+        got, _ = compare(cp, gp, "--channels", "G=R", "--floor", "0.1")
+        want = channel_metrics(g[..., 0], c[..., 1], floor=0.1)
+        close(got["R"]["max_abs"], want["max_abs"], 1e-12, "compare --channels G=R: max_abs")
+        check(list(got) == ["R"], f"compare --channels G=R compared {list(got)}")
+        # A profile file with the same thresholds gives the same verdicts as the flags.
+        profile = os.path.join(tmp, "profile.json")
+        import json
+        json.dump({"default": {"rel": 2e-3, "floor": 0.1},
+                   "channels": [{"match": "G", "rel": 5e-5, "floor": 0.1}]}, open(profile, "w"))
+        got, _ = compare(cp, gp, "--profile", profile)
+        check(got["R"]["failing"] == channel_metrics(g[..., 0], c[..., 0], r=2e-3, floor=0.1)["failing"]
+              and got["G"]["failing"] == channel_metrics(g[..., 1], c[..., 1], r=5e-5,
+                                                         floor=0.1)["failing"],
+              "compare --profile: the failing counts are not the profile's thresholds'")
+        # --json FILE holds what --format json prints.
+        out = os.path.join(tmp, "out.json")
+        subprocess.run([binary, "compare", cp, gp, "--json", out], capture_output=True)
+        printed = subprocess.run([binary, "compare", cp, gp, "--format", "json"],
+                                 capture_output=True, text=True).stdout
+        check(json.load(open(out)) == json.loads(printed), "compare --json differs from --format json")
+        # --suggest: rel = safety x the largest relative error over the runs (floor as given).
+        c2 = g.copy()
+        c2[..., 0] *= np.float32(1.0005)
+        c2p = os.path.join(tmp, "c2.exr")
+        write_rgb(c2p, c2)
+        runs = os.path.join(tmp, "runs.txt")
+        open(runs, "w").write(f"{cp}\n{c2p}\n")
+        suggested = os.path.join(tmp, "suggested.json")
+        subprocess.run([binary, "compare", "--suggest", "--list", runs, gp, "--safety", "3",
+                        "--floor", "0.1", "-o", suggested, "--name", "mine"], check=True,
+                       capture_output=True)
+        rule = json.load(open(suggested))
+        check(rule.get("name") == "mine", f"compare --suggest --name: the profile is named "
+                                          f"{rule.get('name')}")
+        for k, name in enumerate("RGB"):
+            worst_k = max(channel_metrics(g[..., k], x[..., k], floor=0.1)["max_rel"] for x in (c, c2))
+            rules = [r for r in rule["channels"] if r["match"] == name]
+            check(len(rules) == 1, f"compare --suggest: {len(rules)} rules for {name}")
+            if rules:
+                close(rules[0]["rel"], 3 * worst_k, 1e-12, f"compare --suggest --safety 3: {name} rel")
+                close(rules[0]["floor"], 0.1, 0, f"compare --suggest --floor: {name}")
 
 print(f"cli_values: {checks} checks, {len(failures)} failures")
 sys.exit(1 if failures else 0)
