@@ -9,6 +9,20 @@
   of --wavevector equal to S(omega) D(omega, theta) d(omega)/dk / k with the dispersion relation
   (deep, finite depth, capillary with k_m) solved here; the moments of --moments against the
   trapezoid rule over a dense --omega grid, --k-max moving them.
+- brdf: zeta, p, the directional slope variances, Lambda (exact and rational erfc), F (exact and
+  Schlick) and the BRDF against Bruneton 2010 written out here, for any normal and wind angle;
+  the sea light linear in --sea-colour; --tolerance met by every error estimate; --order and
+  --sun-order approaching the reference; --turbidity dimming the sun.
+- sky: Y, x, y and linear sRGB against Preetham's formulas (appendix A.2) and the sRGB primaries;
+  --irradiance against a quadrature of the sky; the hemisphere image (--size) pixel by pixel.
+- compare: every metric (max, RMS, RMSE, percentiles by nearest rank, ULP distance, failing
+  count) for --abs, --rel, --floor, --ulp; --rel and --max-fail-share at their boundary;
+  --channels C=G, --profile, --json, --suggest --safety --floor --name.
+- render: --spp, --renderer and --threads against the scene's settings; --samples averaging to
+  the pixels; --lighting-error bounding |fast - reference|; --max-memory at the estimate.
+  fields: --time against the scene's time; --at at a node against the FFT. acf: the lags of
+  --length and --samples-per-period, acf(0) = 1, one period of a single cascade along x and z
+  (and not along the diagonal), --seed, --lines and --area reaching the estimate.
 
     tests/cli_values_test.py PATH/TO/oceanref
 
@@ -637,6 +651,140 @@ if oiio is not None:
             if rules:
                 close(rules[0]["rel"], 3 * worst_k, 1e-12, f"compare --suggest --safety 3: {name} rel")
                 close(rules[0]["floor"], 0.1, 0, f"compare --suggest --floor: {name}")
+
+
+# --- render, fields, acf: each flag equals the scene setting it stands for, or its definition ----
+
+def report(*args):
+    r = subprocess.run([binary, *map(str, args)], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"FAIL: oceanref {' '.join(map(str, args))} exited {r.returncode}: {r.stderr}")
+    return dict(line.split(",", 1) for line in r.stdout.splitlines() if "," in line)
+
+
+def read_layers(path):
+    image = oiio.ImageInput.open(path)
+    spec = image.spec()
+    pixels = image.read_image(0, 0, 0, spec.nchannels, "float")
+    image.close()
+    return {name: pixels[:, :, i] for i, name in enumerate(spec.channelnames)}
+
+
+if oiio is not None:
+    import json
+    with tempfile.TemporaryDirectory() as tmp:
+        source = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+        base = json.load(open(os.path.join(source, "reference", "scenes", "golden",
+                                           "default_small.json")))
+        base["render"].update({"width": 16, "height": 10, "samples_per_pixel": 4})
+        base["shading"]["accuracy"] = "fast"
+
+        def scene_file(name, **render):
+            scene = json.loads(json.dumps(base))
+            scene["render"].update(render)
+            path = os.path.join(tmp, name + ".json")
+            json.dump(scene, open(path, "w"))
+            return path
+
+        fast = scene_file("fast")
+        out = os.path.join(tmp, "out.exr")
+        # --spp and --renderer are the scene's samples_per_pixel and renderer.
+        check(report("render", fast, "-o", out, "--spp", "9")["pixel_sha256"] ==
+              report("render", scene_file("spp9", samples_per_pixel=9), "-o", out)["pixel_sha256"],
+              "render --spp 9 is not the scene with samples_per_pixel 9")
+        check(report("render", fast, "-o", out, "--renderer", "raytrace")["pixel_sha256"] ==
+              report("render", scene_file("rt", renderer="raytrace"), "-o", out)["pixel_sha256"],
+              "render --renderer raytrace is not the scene with render.renderer raytrace")
+        one = report("render", fast, "-o", out, "--threads", "1")
+        check(one["pixel_sha256"] == report("render", fast, "-o", out, "--threads", "2")["pixel_sha256"],
+              "render --threads 1 and 2 differ")
+        # --samples: each pixel is the mean of its S x S samples (float32 of each: 1e-6).
+        samples_path = os.path.join(tmp, "samples.exr")
+        report("render", fast, "-o", out, "--samples", samples_path)
+        pixels, samples = read_layers(out), read_layers(samples_path)
+        for name in "RGB":
+            means = samples[name].reshape(10, 2, 16, 2).mean(axis=(1, 3))
+            check(np.allclose(means, pixels[name], rtol=1e-6, atol=1e-6 * pixels[name].max()),
+                  f"render --samples: the mean of the samples of {name} is not the pixel")
+        # --lighting-error: every pixel's fast radiance within its lighting_error (+ the pixel
+        # error: none, the same samples) of the reference render's.
+        with_error = os.path.join(tmp, "error.exr")
+        report("render", fast, "-o", with_error, "--aov", "--lighting-error")
+        reference = scene_file("ref")
+        scene = json.load(open(reference))
+        scene["shading"]["accuracy"] = "reference"
+        json.dump(scene, open(reference, "w"))
+        ref_path = os.path.join(tmp, "ref.exr")
+        report("render", reference, "-o", ref_path)
+        f_, r_ = read_layers(with_error), read_layers(ref_path)
+        for name in "RGB":
+            bound = f_[f"lighting_error.{name}"].astype(np.float64)
+            gap = np.abs(f_[name].astype(np.float64) - r_[name])
+            check(np.all(gap <= bound * (1 + 1e-5) + 1e-6 * np.abs(r_[name])),
+                  f"render --lighting-error: |fast - reference| of {name} exceeds lighting_error")
+            check(bound.max() > 0, f"render --lighting-error: lighting_error.{name} is 0")
+        # --max-memory: the report's estimate is the boundary; K/M/G are powers of 1024.
+        estimate = int(one["memory_estimate_bytes"])
+        kib = -(-estimate // 1024)
+        ok = subprocess.run([binary, "render", fast, "-o", out, "--max-memory", f"{kib}K"],
+                            capture_output=True, text=True)
+        refused = subprocess.run([binary, "render", fast, "-o", out, "--max-memory",
+                                  f"{estimate // 1024 - 1}K"], capture_output=True, text=True)
+        check(ok.returncode == 0 and refused.returncode != 0,
+              f"render --max-memory: {kib}K gave exit {ok.returncode}, {estimate // 1024 - 1}K exit "
+              f"{refused.returncode} (estimate {estimate} bytes)")
+        # fields --time is the scene's time.
+        timed = json.loads(json.dumps(base))
+        timed["time"] = 2.5
+        timed_path = os.path.join(tmp, "timed.json")
+        json.dump(timed, open(timed_path, "w"))
+        a = subprocess.run([binary, "fields", fast, "--time", "2.5", "--at", "3,4"], capture_output=True,
+                           text=True).stdout
+        b = subprocess.run([binary, "fields", timed_path, "--at", "3,4"], capture_output=True,
+                           text=True).stdout
+        c_ = subprocess.run([binary, "fields", fast, "--at", "3,4"], capture_output=True, text=True).stdout
+        check(a == b and a != c_, "fields --time 2.5 is not the scene at time 2.5")
+        # fields --at x,z: the direct sum at a grid node equals the FFT there.
+        rows = list(csv.DictReader(io.StringIO(subprocess.run(
+            [binary, "fields", fast, "--at", "0,0"], capture_output=True, text=True).stdout)))
+        for row in rows:
+            if row["cascade"] == "0":
+                close(float(row["direct"]), float(row["fft"]), 1e-9,
+                      f"fields --at 0,0: cascade 0 {row['field']} direct sum against the FFT")
+        # acf: lags k/S periods up to --length, acf(0) = 1; a single cascade of period L along x
+        # or z repeats after one period; the start points and lines change the estimate.
+        single = json.loads(json.dumps(base))
+        single["waves"]["cascades"] = {"sizes": [64]}
+        single["waves"].pop("low_resolution", None)
+        single_path = os.path.join(tmp, "single.json")
+        json.dump(single, open(single_path, "w"))
+
+        def acf(*args):
+            text = subprocess.run([binary, "acf", single_path, "--threads", "1", *map(str, args)],
+                                  capture_output=True, text=True)
+            if text.returncode != 0:
+                sys.exit(f"FAIL: oceanref acf {' '.join(map(str, args))}: {text.stderr}")
+            return list(csv.DictReader(io.StringIO(text.stdout)))
+
+        rows = acf("--lines", 16, "--length", 2, "--samples-per-period", 4, "--area", 4)
+        check([float(r["tau_periods"]) for r in rows] == [k / 4 for k in range(9)],
+              "acf --length 2 --samples-per-period 4: the lags are not k/4 periods, k = 0..8")
+        check([float(r["tau_m"]) for r in rows] == [64 * k / 4 for k in range(9)],
+              "acf: tau_m is not tau_periods x 64 m")
+        check(float(rows[0]["acf"]) == 1.0, "acf(0) is not 1")
+        for direction in (0, 90):
+            r1 = acf("--lines", 16, "--length", 1, "--samples-per-period", 2, "--area", 4,
+                     "--direction-deg", direction)
+            close(float(r1[-1]["acf"]), 1.0, 1e-9, f"acf --direction-deg {direction}: one period")
+        diagonal = acf("--lines", 16, "--length", 1, "--samples-per-period", 2, "--area", 4,
+                       "--direction-deg", 45)
+        check(abs(float(diagonal[-1]["acf"]) - 1.0) > 1e-3,
+              "acf --direction-deg 45: one period along the diagonal repeats the surface")
+        for flag, value in (("--seed", 2), ("--lines", 8), ("--area", 2)):
+            given = {"--lines": 16, "--area": 4, flag: value}
+            other = acf("--lines", given["--lines"], "--length", 2, "--samples-per-period", 4,
+                        "--area", given["--area"], *([flag, value] if flag == "--seed" else []))
+            check(float(other[3]["acf"]) != float(rows[3]["acf"]), f"acf {flag} {value} changes nothing")
 
 print(f"cli_values: {checks} checks, {len(failures)} failures")
 sys.exit(1 if failures else 0)
