@@ -429,8 +429,8 @@ def report_block(results, args, head, seconds, skipped_jobs):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--per-folder", type=int, default=6,
-                        help="mutants per folder (the sample size; default 6)")
+    parser.add_argument("--per-folder", type=int, default=5,
+                        help="mutants per folder (the sample size; default 5)")
     parser.add_argument("--folders", default=",".join(FOLDERS))
     parser.add_argument("--jobs", type=int, default=os.cpu_count())
     parser.add_argument("--work", default=os.path.join(ROOT, "build-mutation"))
