@@ -26,19 +26,22 @@
 
     tests/cli_values_test.py PATH/TO/oceanref
 
-NumPy (tools/setup.sh); skipped (exit 77) only without it.
+NumPy and OpenImageIO's Python module (tools/setup.sh); skipped (exit 77) only without them.
 """
 import csv
 import io
+import json
 import math
 import os
 import subprocess
 import sys
+import tempfile
 
 try:
     import numpy as np
+    import OpenImageIO as oiio
 except ImportError:
-    print("SKIP: NumPy is missing (tools/setup.sh installs python3-numpy)")
+    print("SKIP: NumPy or OpenImageIO's Python module is missing (tools/setup.sh installs them)")
     sys.exit(77)
 
 binary = sys.argv[1]
@@ -491,12 +494,7 @@ check(float(printed["Y"]) != float(sun["Y"]), "sky --printed-transmittance chang
 check(float(oceanref("sky", "--sun-zenith-deg", "75", "--sun")[0]["Y"]) < float(sun["Y"]),
       "sky --sun: a lower sun is not dimmer")
 # --size N -o: the hemisphere image, pixel (row, column) the direction at radius r = theta/(pi/2).
-import tempfile  # noqa: E402
-try:
-    import OpenImageIO as oiio
-except ImportError:
-    oiio = None
-if oiio is not None:
+def sky_hemisphere_image():
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "sky.exr")
         subprocess.run([binary, "sky", "--sun-zenith-deg", "50", "--sun-azimuth-deg", "30",
@@ -520,6 +518,9 @@ if oiio is not None:
                                 math.radians(30))["Y"]
             close(float(pixels[row_, column, y_index]), want, 1e-6,
                   f"sky --size 16: Y at ({row_}, {column})")
+
+
+sky_hemisphere_image()
 
 
 # --- compare: every metric and threshold flag against the definitions (docs/BACKENDS.md) --------
@@ -561,7 +562,6 @@ def compare(*args, expect=None):
                        capture_output=True, text=True)
     if r.returncode not in (0, 1):
         sys.exit(f"FAIL: oceanref compare {' '.join(map(str, args))}: {r.stderr}")
-    import json
     result = json.loads(r.stdout)
     if expect is not None:
         check(r.returncode == expect, f"compare {' '.join(map(str, args))}: exit {r.returncode}, "
@@ -569,7 +569,7 @@ def compare(*args, expect=None):
     return {c["golden"]: c for c in result["parts"][0]["channels"]}, r.returncode
 
 
-if oiio is not None:
+def compare_flags():
     with tempfile.TemporaryDirectory() as tmp:
         rng = np.random.default_rng(7)
         g = rng.uniform(0.0, 2.0, (24, 32, 3)).astype(np.float32)
@@ -616,7 +616,6 @@ if oiio is not None:
         check(list(got) == ["R"], f"compare --channels G=R compared {list(got)}")
         # A profile file with the same thresholds gives the same verdicts as the flags.
         profile = os.path.join(tmp, "profile.json")
-        import json
         json.dump({"default": {"rel": 2e-3, "floor": 0.1},
                    "channels": [{"match": "G", "rel": 5e-5, "floor": 0.1}]}, open(profile, "w"))
         got, _ = compare(cp, gp, "--profile", profile)
@@ -653,6 +652,9 @@ if oiio is not None:
                 close(rules[0]["floor"], 0.1, 0, f"compare --suggest --floor: {name}")
 
 
+compare_flags()
+
+
 # --- render, fields, acf: each flag equals the scene setting it stands for, or its definition ----
 
 def report(*args):
@@ -670,8 +672,7 @@ def read_layers(path):
     return {name: pixels[:, :, i] for i, name in enumerate(spec.channelnames)}
 
 
-if oiio is not None:
-    import json
+def render_fields_acf_flags():
     with tempfile.TemporaryDirectory() as tmp:
         source = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
         base = json.load(open(os.path.join(source, "reference", "scenes", "golden",
@@ -785,6 +786,10 @@ if oiio is not None:
             other = acf("--lines", given["--lines"], "--length", 2, "--samples-per-period", 4,
                         "--area", given["--area"], *([flag, value] if flag == "--seed" else []))
             check(float(other[3]["acf"]) != float(rows[3]["acf"]), f"acf {flag} {value} changes nothing")
+
+
+render_fields_acf_flags()
+
 
 print(f"cli_values: {checks} checks, {len(failures)} failures")
 sys.exit(1 if failures else 0)
