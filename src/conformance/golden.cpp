@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -12,6 +13,7 @@
 #include "conformance/fields_output.h"
 #include "conformance/render_output.h"
 #include "core/format.h"
+#include "core/math.h"
 #include "io/exr.h"
 #include "io/output_file.h"
 #include "io/sha256.h"
@@ -27,7 +29,7 @@ namespace {
 // a ray comes within 2° of the sun (its disk is added there).
 bool open_sky_mean(const Camera& camera, const Sky& sky, int x, int y, int s, Vec3& mean) {
   const double per_sample = 1.0 / (s * s);
-  const double cos_near_sun = std::cos(2.0 * 3.141592653589793 / 180.0);
+  const double cos_near_sun = math::cos(2.0 * std::numbers::pi / 180.0);
   mean = {};
   for (int r = y * s; r < (y + 1) * s; ++r) {
     for (int c = x * s; c < (x + 1) * s; ++c) {
@@ -92,7 +94,6 @@ std::vector<std::string> golden_physics_failures(const Scene& scene, const Rende
   }
   const Camera camera = scene_camera(scene);
   const Sky sky = scene_sky(scene);
-  int checked = 0;
   for (int y = 1; y + 1 < image.height; ++y) {
     for (int x = 1; x + 1 < image.width; ++x) {
       bool open = true;
@@ -104,7 +105,6 @@ std::vector<std::string> golden_physics_failures(const Scene& scene, const Rende
       }
       Vec3 mean;
       if (!open || !open_sky_mean(camera, sky, x, y, image.samples_per_axis, mean)) continue;
-      ++checked;
       const Vec3& got = image.radiance[static_cast<std::size_t>(y * image.width + x)];
       for (std::size_t k = 0; k < 3; ++k) {
         if (std::fabs(got[k] - mean[k]) <= 1e-12 * mean[k]) continue;
