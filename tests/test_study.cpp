@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -134,4 +136,28 @@ TEST_CASE("study: FFT grids equal direct summation at the nodes; interpolation e
     CHECK(std::fabs(identity_error) < 1e-12);
   }
   CHECK(rows == 12);
+}
+
+TEST_CASE("lighting map, full sweep: the sweep reference/ACCURACY.md publishes, case for case") {
+  // The published map is measured over lighting_map_sweep(false) (tools/lighting_accuracy_map.sh):
+  // its sweep line, written from the spec, must be the one in ACCURACY.md, and the case counts
+  // the products of the spec's sizes (views × azimuths × roughness × normals × suns; F̄ without
+  // the suns).
+  LightingMap map;
+  map.spec = lighting_map_sweep(false);
+  const LightingSweepSpec& s = map.spec;
+  map.fresnel_cases =
+      s.cos_view.size() * s.azimuths_deg.size() * s.roughness.size() * s.tilted.size();
+  map.lit_cases = map.fresnel_cases * s.suns.size();
+  const std::string written = lighting_map_markdown(map);
+  const std::string sweep = written.substr(0, written.find("}: ") + 3);
+  std::ifstream in(std::string(OCEANREF_SOURCE_DIR) + "/reference/ACCURACY.md");
+  const std::string accuracy((std::istreambuf_iterator<char>(in)), {});
+  const std::size_t at = accuracy.find(sweep);
+  REQUIRE_MESSAGE(at != std::string::npos, "ACCURACY.md does not hold the sweep " << sweep);
+  const std::string counts = std::to_string(map.lit_cases) +
+                             " cases for the reflected sky and the "
+                             "sun disk, " +
+                             std::to_string(map.fresnel_cases) + " for F̄";
+  CHECK(accuracy.compare(at + sweep.size(), counts.size(), counts) == 0);
 }
