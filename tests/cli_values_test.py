@@ -614,6 +614,10 @@ def compare_flags():
         want = channel_metrics(g[..., 0], c[..., 1], floor=0.1)
         close(got["R"]["max_abs"], want["max_abs"], 1e-12, "compare --channels G=R: max_abs")
         check(list(got) == ["R"], f"compare --channels G=R compared {list(got)}")
+        text = subprocess.run([binary, "compare", cp, gp, "--channels", "G=R", "--floor", "0.1"],
+                              capture_output=True, text=True).stdout
+        check(any(line.split()[:1] == ["G=R"] for line in text.splitlines()),
+              f"compare --channels G=R: the text table does not name the row G=R:\n{text}")
         # A profile file with the same thresholds gives the same verdicts as the flags.
         profile = os.path.join(tmp, "profile.json")
         json.dump({"default": {"rel": 2e-3, "floor": 0.1},
