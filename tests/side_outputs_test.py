@@ -7,6 +7,8 @@
   render.tone_key, L̄_w = exp(mean ln(1e-4 + L)) over the pixels and L_white the largest scaled
   luminance, then the sRGB transfer function, rounded to 8 bits (within one step: the library
   takes L̄_w and L_white from the doubles, this test from the float32 pixels);
+- the EXR's line offset table read here: each entry points at the chunk of its lines, the
+  chunks contiguous to the end of the file (OpenEXR's reader rebuilds a broken table silently);
 - the EXR's `oceanref.pixel_sha256` recomputed with hashlib from the decoded pixels; the seed,
   the renderer and the unresolved slope variance attributes against the scene and `probe`;
 - every AOV layer (depth, coverage, normal, x0, sun, sky, sea, lighting_error, pixel_error)
@@ -106,6 +108,30 @@ def read_exr(path):
     return spec, {name: pixels[:, :, i] for i, name in enumerate(spec.channelnames)}
 
 
+def exr_chunks(data):
+    """The scanline chunks of a single-part EXR as its header and line offset table give them
+    (OpenEXR file layout): [(offset, y, size)], the compression and the data window."""
+    check(data[:4] == b"\x76\x2f\x31\x01", "EXR: no magic number")
+    pos, attributes = 8, {}
+    while data[pos] != 0:
+        name_end = data.index(b"\0", pos)
+        type_end = data.index(b"\0", name_end + 1)
+        size, = struct.unpack("<i", data[type_end + 1:type_end + 5])
+        attributes[data[pos:name_end].decode()] = data[type_end + 5:type_end + 5 + size]
+        pos = type_end + 5 + size
+    pos += 1
+    compression = attributes["compression"][0]
+    xmin, ymin, xmax, ymax = struct.unpack("<iiii", attributes["dataWindow"])
+    lines = {0: 1, 1: 1, 2: 1, 3: 16, 4: 32}[compression]  # none, RLE, ZIPS, ZIP, PIZ
+    count = (ymax - ymin + lines) // lines
+    offsets = struct.unpack(f"<{count}Q", data[pos:pos + 8 * count])
+    chunks = []
+    for offset in offsets:
+        y, size = struct.unpack("<ii", data[offset:offset + 8])
+        chunks.append((offset, y, size))
+    return chunks, lines, (ymin, ymax)
+
+
 def srgb(c):
     c = min(max(c, 0.0), 1.0)
     return 12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055
@@ -148,6 +174,22 @@ with tempfile.TemporaryDirectory() as tmp:
           f"PNG preview: Reinhard + sRGB from the EXR differs by up to {diff.max()} "
           f"({(diff == 0).mean():.3f} of values exact)")
     check(len(np.unique(mine)) > 20, "PNG preview: fewer than 20 distinct values")
+
+    # --- The EXR's line offset table (a reader that trusts it finds every chunk) ---------------
+    tall = json.loads(json.dumps(scene))
+    tall["render"].update({"width": 8, "height": 40, "samples_per_pixel": 1})
+    tall["shading"]["accuracy"] = "fast"
+    tall_path = os.path.join(tmp, "tall.json")
+    json.dump(tall, open(tall_path, "w"))
+    run("render", tall_path, "-o", os.path.join(tmp, "tall.exr"), "--threads", "2")
+    data = open(os.path.join(tmp, "tall.exr"), "rb").read()
+    chunks, lines, (ymin, ymax) = exr_chunks(data)
+    check(len(chunks) == 3, f"EXR: {len(chunks)} chunks of 16 lines for 40 rows")
+    check([y for _, y, _ in chunks] == list(range(ymin, ymax + 1, lines)),
+          f"EXR: the line offset table points at chunks of lines {[y for _, y, _ in chunks]}")
+    check(all(a[0] + 8 + a[2] == b[0] for a, b in zip(chunks, chunks[1:])) and
+          chunks[-1][0] + 8 + chunks[-1][2] == len(data),
+          "EXR: the chunks the offset table gives are not contiguous up to the end of the file")
 
     # --- Attributes ----------------------------------------------------------------------------
     interleaved = np.stack([ch["R"], ch["G"], ch["B"]], axis=-1).astype("<f4").tobytes()

@@ -64,6 +64,21 @@ TEST_CASE("published values: huge-argument reduction (Ng 1992) and exact cases")
   CHECK(math::erf(1.0) == 0x1.af767a741088bp-1);  // 0.8427007929497149
 }
 
+TEST_CASE("exp near 0: the correctly rounded 1 + x + x²/2 on both sides of the midpoints") {
+  // For |x| <= 2^-53, e^x = 1 + x + x²/2 + …: the neighbours of 1 are 1 - 2^-53 and 1 + 2^-52,
+  // the midpoints 1 - 2^-54 and 1 + 2^-53 (the random arguments of tests/math_accuracy.cpp never
+  // come this close to 0).
+  CHECK(math::exp(0x1.8p-54) == 1.0);             // 1 + 1.5·2^-54: below the upper midpoint
+  CHECK(math::exp(-0x1.8p-54) == 1.0 - 0x1p-53);  // 1 - 1.5·2^-54: below the lower midpoint
+  CHECK(math::exp(0x1p-53) == 1.0 + 0x1p-52);     // 2^-107 above the upper midpoint
+  CHECK(math::exp(-0x1p-54) == 1.0);              // 2^-109 above the lower midpoint
+  CHECK(math::exp(-0x1.fffffffffffffp-54) == 1.0 - 0x1p-53);
+  CHECK(math::exp(0x1p-60) == 1.0);
+  CHECK(math::exp(-0x1p-60) == 1.0);
+  CHECK(math::exp(0x1p-1074) == 1.0);
+  CHECK(math::exp(-0.0) == 1.0);
+}
+
 TEST_CASE("sincos equals sin and cos bit for bit") {
   for (double x = -50.0; x < 50.0; x += 0.37) {
     const math::SinCos s = math::sincos(x);
