@@ -179,6 +179,7 @@ with tempfile.TemporaryDirectory() as tmp:
     tall = json.loads(json.dumps(scene))
     tall["render"].update({"width": 8, "height": 40, "samples_per_pixel": 1})
     tall["shading"]["accuracy"] = "fast"
+    tall["shading"].pop("tolerance", None)
     tall_path = os.path.join(tmp, "tall.json")
     json.dump(tall, open(tall_path, "w"))
     run("render", tall_path, "-o", os.path.join(tmp, "tall.exr"), "--threads", "2")
