@@ -446,6 +446,8 @@ def main():
     parser.add_argument("--work", default=os.path.join(ROOT, "build-mutation"))
     parser.add_argument("--report", help="write the report block into this file")
     parser.add_argument("--list", action="store_true", help="print the draw order and stop")
+    parser.add_argument("--mutants", help="ID,ID,...: only these mutants (e.g. the survivors of a "
+                                          "report, after new tests), instead of the draw")
     parser.add_argument("--from-results", action="store_true",
                         help="no run: the report of WORK/results.json (after editing "
                              "tools/mutation_survivors.txt)")
@@ -472,6 +474,14 @@ def main():
     begin = time.time()
     tree, build, head = prepare(work)
     order = draw_order(all_candidates(tree), args.seed)
+    if args.mutants:
+        wanted = set(args.mutants.split(","))
+        order = {f: [s for s in sites if s["id"] in wanted] for f, sites in order.items()}
+        found = {s["id"] for sites in order.values() for s in sites}
+        if wanted - found:
+            sys.exit(f"mutation: no such mutant in HEAD's tree: {','.join(sorted(wanted - found))}")
+        folders = [f for f in folders if order[f]]
+        args.per_folder = max(len(order[f]) for f in folders)
     if args.list:
         for folder in folders:
             for s in order[folder][:args.per_folder * 3]:
