@@ -3,7 +3,9 @@
 // settings that do not go with it.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "conformance/fields_output.h"
 #include "raster/renderer.h"
@@ -118,4 +120,25 @@ TEST_CASE("gerstner ocean: settings that do not go with it name their key") {
   // `fields` writes grids a Gerstner ocean does not have.
   const Ocean ocean = realize_ocean(s.waves, 1);
   CHECK_THROWS_WITH_AS(fields_image(s, ocean, 1), doctest::Contains("waves.model"), SceneError);
+}
+
+TEST_CASE("gerstner ocean: the default band runs from 2 peak wavelengths to a twentieth of one") {
+  // README (waves.gerstner): by default the band drawn is [λ_p/20, 2λ_p], λ_p = 2π/k_p the
+  // peak wavelength — k_p here from JONSWAP's peak (Gamper eq. 3.43, 3.52, 3.53) and deep water
+  // (k = ω²/g), written out independently of the spectrum code.
+  const Scene scene = parse_scene(gerstner_scene_json());
+  const double g = 9.81, u = 9.0, fetch = 50000.0;
+  const double chi = g * fetch / (u * u);
+  const double omega_p = 2.0 * std::numbers::pi * g * 3.5 * std::pow(chi, -0.33) / u;
+  const double peak = 2.0 * std::numbers::pi / (omega_p * omega_p / g);
+  const GerstnerDraw& d = scene.waves.gerstner;
+  CHECK(d.min_wavenumber == doctest::Approx(2.0 * std::numbers::pi / (2.0 * peak)).epsilon(1e-12));
+  CHECK(d.max_wavenumber == doctest::Approx(2.0 * std::numbers::pi / (peak / 20.0)).epsilon(1e-12));
+  // Given explicitly, the band is what the keys say.
+  nlohmann::json s = gerstner_scene_json();
+  s["waves"]["gerstner"]["max_wavelength"] = 30.0;
+  s["waves"]["gerstner"]["min_wavelength"] = 0.25;
+  const GerstnerDraw e = parse_scene(s).waves.gerstner;
+  CHECK(e.min_wavenumber == doctest::Approx(2.0 * std::numbers::pi / 30.0).epsilon(1e-15));
+  CHECK(e.max_wavenumber == doctest::Approx(2.0 * std::numbers::pi / 0.25).epsilon(1e-15));
 }
