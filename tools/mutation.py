@@ -7,7 +7,7 @@ wrong?
 
 One small semantic change (a mutant) at a time is made in a clone of HEAD's tree (WORK/tree; the
 working tree is never touched, uncommitted changes are not tested), the clone's build (WORK/build,
-Release, gcc) is rebuilt incrementally, and the unit and CLI tests run WITHOUT the golden hashes:
+Release, gcc, _GLIBCXX_ASSERTIONS: an index off the end aborts) is rebuilt incrementally, and the unit and CLI tests run WITHOUT the golden hashes:
 every ctest entry except `golden`, with OCEANREF_TESTS_NO_GOLDENS=1 (the test cases and Python
 tests that compare with reference/golden/manifest.json skip those comparisons). The unit tests
 run as shards of ~10 doctest cases; the first failing shard or script kills the mutant (a
@@ -265,9 +265,11 @@ def prepare(work):
     run(["git", "-C", tree, "clean", "--quiet", "-fdx"])
     run(["bash", os.path.join(ROOT, "tools", "setup.sh"), "build"], cwd=ROOT,
         stdout=subprocess.DEVNULL)
-    if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
-        run(["cmake", "-S", tree, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
-             f"-DOCEANREF_KISSFFT_DIR={ROOT}/build/_deps/kissfft-src"], stdout=subprocess.DEVNULL)
+    # _GLIBCXX_ASSERTIONS: an index off the end of a std::array or std::vector aborts (a
+    # mutant's off-by-one loop bound would otherwise write past the array unnoticed).
+    run(["cmake", "-S", tree, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+         "-DCMAKE_CXX_FLAGS=-D_GLIBCXX_ASSERTIONS",
+         f"-DOCEANREF_KISSFFT_DIR={ROOT}/build/_deps/kissfft-src"], stdout=subprocess.DEVNULL)
     return tree, build, head
 
 
