@@ -336,3 +336,50 @@ TEST_CASE("capillary k_m: the Unified c_m = 0.23 sqrt(370/k_m) and its capillary
     CHECK(peak < 1.05 * k_m);
   }
 }
+
+TEST_CASE("spectrum settings: the library refuses each field outside its range, naming it") {
+  // The scene parser and the command line check their own keys first; a library or Python
+  // caller reaches make_spectrum (its validate) directly. Each range end is accepted and the next
+  // double beyond it refused (SettingError naming the field).
+  struct Field {
+    const char* key;
+    double SpectrumSettings::*member;
+    double lo, hi;
+  };
+  const Field fields[] = {
+      {"wind_speed", &SpectrumSettings::wind_speed, 0.1, 60.0},
+      {"fetch", &SpectrumSettings::fetch, 1.0, 1.0e7},
+      {"depth", &SpectrumSettings::depth, 0.01, testing::kInfinity},
+      {"gravity", &SpectrumSettings::gravity, 0.1, 100.0},
+      {"wind_direction", &SpectrumSettings::wind_direction, -4.0 * testing::kPi,
+       4.0 * testing::kPi},
+      {"swell", &SpectrumSettings::swell, 0.0, 1.0},
+      {"spread_blend", &SpectrumSettings::spread_blend, 0.0, 1.0},
+      {"phillips_suppression", &SpectrumSettings::phillips_suppression, 0.0, 0.1},
+      {"capillary_wavenumber", &SpectrumSettings::capillary_wavenumber, 1.0, 1.0e4}};
+  for (const Field& f : fields) {
+    const std::string key = f.key;
+    CAPTURE(key);
+    for (const double v : {f.lo, f.hi}) {
+      SpectrumSettings in;
+      in.model = SpectrumModel::jonswap;
+      in.allow_extrapolation = true;
+      in.*f.member = v;
+      if (key == "swell" && v > 0.0) in.spreading = SpreadingModel::mitsuyasu;
+      CHECK_NOTHROW(make_spectrum(in));
+    }
+    for (const double v :
+         {std::nextafter(f.lo, -testing::kInfinity), std::nextafter(f.hi, testing::kInfinity)}) {
+      if (v == f.hi) continue;  // no double above +inf
+      SpectrumSettings in;
+      in.model = SpectrumModel::jonswap;
+      in.*f.member = v;
+      try {
+        make_spectrum(in);
+        FAIL("accepted " << v);
+      } catch (const SettingError& e) {
+        CHECK(e.key() == key);
+      }
+    }
+  }
+}
