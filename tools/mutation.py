@@ -138,6 +138,15 @@ SYMMETRIC = {"min", "max", "hypot", "fmin", "fmax", "swap", "pair", "make_pair",
 SIMPLE = r"[A-Za-z_][\w.:]*(?:\[[\w.]+\])?|\d+(?:\.\d*)?(?:[eE][+-]?\d+)?"
 
 
+# Operators that replace one token by its counterpart: (name, pattern, replacements).
+OPERATOR_SWAPS = (
+    ("arith", r"(?<=\S) ([+\-*/]) (?=\S)", {"+": "-", "-": "+", "*": "/", "/": "*"}),
+    ("compound", r" (\+=|-=|\*=|/=) ", {"+=": "-=", "-=": "+=", "*=": "/=", "/=": "*="}),
+    ("boundary", r"(?<=\S) (<=|>=|<|>) (?=\S)", {"<": "<=", "<=": "<", ">": ">=", ">=": ">"}),
+    ("negate", r" (==|!=|&&|\|\|) ", {"==": "!=", "!=": "==", "&&": "||", "||": "&&"}),
+)
+
+
 def candidates(path, text, masked):
     """Every site in one file: (operator, offset, old, new, description)."""
     sites = []
@@ -146,18 +155,9 @@ def candidates(path, text, masked):
         if old != new and text[start:start + len(old)] == old:
             sites.append((op, start, old, new))
 
-    pairs = {"+": "-", "-": "+", "*": "/", "/": "*"}
-    for m in re.finditer(r"(?<=\S) ([+\-*/]) (?=\S)", masked):
-        add("arith", m.start(1), m.group(1), pairs[m.group(1)])
-    compound = {"+=": "-=", "-=": "+=", "*=": "/=", "/=": "*="}
-    for m in re.finditer(r" (\+=|-=|\*=|/=) ", masked):
-        add("compound", m.start(1), m.group(1), compound[m.group(1)])
-    boundary = {"<": "<=", "<=": "<", ">": ">=", ">=": ">"}
-    for m in re.finditer(r"(?<=\S) (<=|>=|<|>) (?=\S)", masked):
-        add("boundary", m.start(1), m.group(1), boundary[m.group(1)])
-    negate = {"==": "!=", "!=": "==", "&&": "||", "||": "&&"}
-    for m in re.finditer(r" (==|!=|&&|\|\|) ", masked):
-        add("negate", m.start(1), m.group(1), negate[m.group(1)])
+    for op, pattern, swap in OPERATOR_SWAPS:
+        for m in re.finditer(pattern, masked):
+            add(op, m.start(1), m.group(1), swap[m.group(1)])
     for m in re.finditer(r"(?<![\w!)\]])!(?=[\w(])", masked):
         add("negate", m.start(), "!", "")
     for m in re.finditer(r"\b(true|false)\b", masked):
