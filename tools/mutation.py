@@ -147,8 +147,8 @@ OPERATOR_SWAPS = (
 )
 
 
-def candidates(path, text, masked):
-    """Every site in one file: (operator, offset, old, new, description)."""
+def candidates(text, masked):
+    """Every site in one file: (operator, offset, old, new)."""
     sites = []
 
     def add(op, start, old, new):
@@ -198,7 +198,7 @@ def candidates(path, text, masked):
             continue
         start = m.start(2)
         add("swap_args", start, a + ", " + b, b + ", " + a)
-    return [(op, start, old, new) for op, start, old, new in sites]
+    return sites
 
 
 def all_candidates(tree):
@@ -212,7 +212,7 @@ def all_candidates(tree):
             rel = f"src/{folder}/{name}"
             text = open(os.path.join(tree, rel)).read()
             masked = mask_code(text)
-            for op, start, old, new in sorted(candidates(rel, text, masked),
+            for op, start, old, new in sorted(candidates(text, masked),
                                               key=lambda s: (s[1], s[0], s[3])):
                 line_no = text.count("\n", 0, start) + 1
                 line_start = text.rfind("\n", 0, start) + 1
@@ -304,7 +304,7 @@ def test_jobs(build):
                          cmd=[unit, "--order-by=name", f"--first={first}", f"--last={last}",
                               "--abort-after=1", "--no-intro", "--no-version"]))
     for test in listing["tests"]:
-        if test["name"] in ("golden",) or test["command"][0] == unit:
+        if test["name"] == "golden" or test["command"][0] == unit:
             continue
         props = {p["name"]: p["value"] for p in test.get("properties", [])}
         env = dict(e.split("=", 1) for e in props.get("ENVIRONMENT", []))
@@ -320,7 +320,7 @@ def start_job(job, work, timeout):
     os.makedirs(tmp)
     env = dict(os.environ, TMPDIR=tmp, OCEANREF_TESTS_NO_GOLDENS="1", OCEANREF_TESTS_FAIL_FAST="1",
                **job["env"])
-    log = open(os.path.join(work, "tmp", re.sub(r"\W", "_", job["name"]) + ".log"), "w")
+    log = open(tmp + ".log", "w")
     proc = subprocess.Popen(job["cmd"], cwd=job["cwd"], env=env, stdout=log,
                             stderr=subprocess.STDOUT, start_new_session=True)
     return dict(proc=proc, job=job, start=time.time(), timeout=timeout, log=log)

@@ -26,10 +26,10 @@ namespace oceanref {
 
 namespace {
 // The mean Preetham sky over the S × S sample rays of pixel (x, y), in sample order; false when
-// a ray comes within 2° of the sun (its disk is added there).
-bool open_sky_mean(const Camera& camera, const Sky& sky, int x, int y, int s, Vec3& mean) {
+// a ray's cosine to the sun exceeds cos_near_sun (its disk is added there).
+bool open_sky_mean(const Camera& camera, const Sky& sky, double cos_near_sun, int x, int y, int s,
+                   Vec3& mean) {
   const double per_sample = 1.0 / (s * s);
-  const double cos_near_sun = math::cos(2.0 * std::numbers::pi / 180.0);
   mean = {};
   for (int r = y * s; r < (y + 1) * s; ++r) {
     for (int c = x * s; c < (x + 1) * s; ++c) {
@@ -94,6 +94,7 @@ std::vector<std::string> golden_physics_failures(const Scene& scene, const Rende
   }
   const Camera camera = scene_camera(scene);
   const Sky sky = scene_sky(scene);
+  const double cos_near_sun = math::cos(2.0 * std::numbers::pi / 180.0);  // 2° from the sun
   for (int y = 1; y + 1 < image.height; ++y) {
     for (int x = 1; x + 1 < image.width; ++x) {
       bool open = true;
@@ -104,13 +105,15 @@ std::vector<std::string> golden_physics_failures(const Scene& scene, const Rende
         }
       }
       Vec3 mean;
-      if (!open || !open_sky_mean(camera, sky, x, y, image.samples_per_axis, mean)) continue;
-      const Vec3& got = image.radiance[static_cast<std::size_t>(y * image.width + x)];
+      if (!open || !open_sky_mean(camera, sky, cos_near_sun, x, y, image.samples_per_axis, mean)) {
+        continue;
+      }
+      const auto p = static_cast<std::size_t>(y * image.width + x);
+      const Vec3& got = image.radiance[p];
       for (std::size_t k = 0; k < 3; ++k) {
         if (std::fabs(got[k] - mean[k]) <= 1e-12 * mean[k]) continue;
-        failures.push_back(
-            "the open sky at " + pixel(static_cast<std::size_t>(y * image.width + x)) + " is " +
-            format_number(got[k]) + ", the Preetham sky over its rays " + format_number(mean[k]));
+        failures.push_back("the open sky at " + pixel(p) + " is " + format_number(got[k]) +
+                           ", the Preetham sky over its rays " + format_number(mean[k]));
         break;
       }
     }
@@ -146,11 +149,10 @@ GoldenReport run(const std::filesystem::path& root, const GoldenOptions& options
     RenderOutputOptions render_options;
     render_options.threads = options.threads;
     render_options.log = options.log;
-    // A converged golden (render.pixel_tolerance) carries its error layers, pixel_error and
+    // The layers are rendered for golden_physics_failures. The stored image keeps them only for a
+    // converged golden (render.pixel_tolerance): its error layers, pixel_error and
     // lighting_error, for `compare --converged`, and the samples per pixel (the pixel hashes
     // cover R, G, B only, so the layers change no hash).
-    // The layers are rendered for golden_physics_failures; the stored image has them only for a
-    // converged golden.
     const bool converged = scene.image.pixel_tolerance > 0.0;
     render_options.aov = true;
     RenderedScene r = render_scene(scene, render_options);

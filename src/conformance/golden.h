@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "raster/renderer.h"
-#include "scene/scene.h"
-
 namespace oceanref {
+
+struct RenderedImage;
+struct Scene;
 
 struct GoldenOptions {
   int threads = 1;
