@@ -251,8 +251,8 @@ TEST_CASE("golden suite: verify passes on a copy, fails naming the hash after a 
 }
 
 TEST_CASE(
-    "golden physics checks: a clean render passes; an inert key, a dark sky, a negative "
-    "term or foamless whitecaps fail") {
+    "golden physics checks: a clean render passes; an inert key, a wrong sky, a negative "
+    "term or error, a coverage over 1 or foamless whitecaps fail") {
   // A small sea under an open sky: 24 × 16 pixels, fast lighting, whitecaps that show foam.
   nlohmann::json s = nlohmann::json::parse(R"({
     "seed": 3, "waves": {"resolution": 16, "cascades": {"sizes": [40, 12]}, "choppiness": -1.5},
@@ -281,6 +281,12 @@ TEST_CASE(
   RenderedImage negative = clean;
   negative.sea[static_cast<std::size_t>(15 * 24 + 3)] = {-1.0, -1.0, -1.0};
   fails_with(scene, negative, "sea at pixel (3, 15) has luminance -1");
+  RenderedImage wrong_error = clean;
+  wrong_error.lighting_error[static_cast<std::size_t>(14 * 24 + 7)][2] = -1e-3;
+  fails_with(scene, wrong_error, "lighting_error at pixel (7, 14) is -0.001");
+  RenderedImage wrong_coverage = clean;
+  wrong_coverage.coverage[static_cast<std::size_t>(13 * 24 + 9)] = 1.25;
+  fails_with(scene, wrong_coverage, "coverage at pixel (9, 13) is 1.25");
   RenderedImage foamless = clean;
   for (Vec3& f : foamless.foam) f = {0.0, 0.0, 0.0};
   fails_with(scene, foamless, "shading.whitecaps is on and no pixel shows foam");
