@@ -93,6 +93,28 @@ TEST_CASE("footprint filter: the level blend") {
         doctest::Approx(0.5 * std::exp(-0.5) + 0.5 * std::exp(-2.0)));
 }
 
+TEST_CASE("footprint filter: a mode folds to the half-plane of directions [0, π), k and −k alike") {
+  // Every direction in steps of π/4, the wind axis and the axis across it included (a wind
+  // direction of 0 puts whole rows of modes on them, exactly).
+  for (int i = 0; i < 8; ++i) {
+    const double angle = std::numbers::pi / 4.0 * i;
+    const double along = i % 2 == 0 ? std::round(2.0 * std::cos(angle)) : 2.0 * std::cos(angle);
+    const double across = i % 2 == 0 ? std::round(2.0 * std::sin(angle)) : 2.0 * std::sin(angle);
+    const WindFrameWavevector k = folded_wavevector({along, across});
+    const WindFrameWavevector opposite = folded_wavevector({-along, -across});
+    INFO("direction " << i << "·π/4");
+    const double folded_angle = std::atan2(k.across, k.along);
+    CHECK(folded_angle >= 0.0);
+    CHECK(folded_angle < std::numbers::pi);
+    CHECK(k.along == opposite.along);
+    CHECK(k.across == opposite.across);
+    // The fold keeps k or takes −k: |k| and the line of k unchanged.
+    CHECK(std::fabs(k.along) == std::fabs(along));
+    CHECK(std::fabs(k.across) == std::fabs(across));
+    CHECK(k.along * across == k.across * along);
+  }
+}
+
 TEST_CASE("footprint filter: every level is the Gaussian-filtered spectrum, summed exactly") {
   const Ocean ocean = realize_ocean(small_waves(), 1);
   const double time = 1.7;

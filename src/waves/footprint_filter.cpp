@@ -13,6 +13,11 @@
 
 namespace oceanref {
 
+WindFrameWavevector folded_wavevector(WindFrameWavevector k) {
+  if (k.across < 0.0 || (k.across == 0.0 && k.along < 0.0)) return {-k.along, -k.across};
+  return k;
+}
+
 namespace {
 constexpr double kPi = std::numbers::pi;
 // The table's axes (footprint_filter.h).
@@ -121,11 +126,8 @@ std::vector<ModeWeight> binned_modes(const Ocean& ocean, double time, ShadingNor
   }
   const double origin = std::floor(log2_of(smallest) * kBinsPerOctave) - 1.0;
   std::vector<Bin> bins;
-  for_each_mode(ocean, time, normals, [&](double ka, double kc, double power, double u) {
-    if (kc < 0.0 || (kc == 0.0 && ka < 0.0)) {
-      ka = -ka;
-      kc = -kc;
-    }
+  for_each_mode(ocean, time, normals, [&](double k_along, double k_across, double power, double u) {
+    const auto [ka, kc] = folded_wavevector({k_along, k_across});
     const double k2 = ka * ka + kc * kc;
     const auto radial =
         static_cast<std::size_t>(std::floor(0.5 * log2_of(k2) * kBinsPerOctave) - origin);

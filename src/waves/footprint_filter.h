@@ -107,6 +107,14 @@ DisplacedPoint filtered_displaced_point(const Ocean& ocean,
                                         const Footprint& f, Interpolation mode,
                                         ShadingNormals normals);
 
+// A wavevector in the wind frame folded to the half-plane of directions [0, π), where V's table
+// bins it (V is even in k: k and −k share a bin): −k when k_across < 0, or k_across = 0 and
+// k_along < 0; k itself otherwise.
+struct WindFrameWavevector {
+  double along = 0.0, across = 0.0;  // [rad/m]
+};
+WindFrameWavevector folded_wavevector(WindFrameWavevector k);
+
 // V(Σ) per wind axis from the table.
 SlopeVariance footprint_slope_variance(const FootprintFilter& filter, const Footprint& f);
 // The displacement gradient's moments under footprint Σ about the read fields (× u² per cascade),
