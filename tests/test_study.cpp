@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -63,6 +64,118 @@ TEST_CASE("lighting map, quick sweep: reference within tolerance and estimates, 
                                         "every tolerance and integral): 0 of 60") !=
         std::string::npos);
   CHECK(lighting_map_svg(map).rfind("<svg", 0) == 0);
+}
+
+TEST_CASE("lighting map plot: every point where its time and error put it, labels apart") {
+  // A map written by hand (no timing): per integral two fast orders and two tolerances, times
+  // and errors over several decades, one error of 0 (drawn at the floor, 1e-17).
+  LightingMap map;
+  const LightingIntegral integrals[] = {LightingIntegral::sky, LightingIntegral::fresnel,
+                                        LightingIntegral::sun};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      LightingMapRow r;
+      r.integral = integrals[i];
+      r.fast = j < 2;
+      r.label = r.fast ? std::to_string(8 << j) : (j == 2 ? "1e-6" : "1e-9");
+      r.seconds = 2e-7 * std::pow(10.0, 0.9 * j + 0.3 * i);
+      r.p95 = i == 2 && j == 3 ? 0.0 : std::pow(10.0, -2.0 - 2.5 * j - 0.5 * i);
+      if (i == 0 && j == 1) {  // a few pixels from the first: their labels compete for a place
+        r.seconds = 1.1 * map.rows[0].seconds;
+        r.p95 = 1.3 * map.rows[0].p95;
+      }
+      r.median = r.p95 / 4.0;
+      r.max = r.p95 == 0.0 ? 0.0 : r.p95 * 30.0;
+      map.rows.push_back(r);
+    }
+  }
+  const std::string svg = lighting_map_svg(map);
+  const auto numbers = [](const std::smatch& m) {
+    std::vector<double> v;
+    for (std::size_t i = 1; i < m.size(); ++i) v.push_back(std::stod(m[i].str()));
+    return v;
+  };
+  const auto all = [&](const std::regex& re) {
+    std::vector<std::vector<double>> found;
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), re); it != std::sregex_iterator();
+         ++it) {
+      found.push_back(numbers(*it));
+    }
+    return found;
+  };
+  const auto panels = all(std::regex(
+      R"re(<rect x="([-\d.e]+)" y="([-\d.e]+)" width="([-\d.e]+)" height="([-\d.e]+)" fill="none")re"));
+  const auto dots = all(std::regex(R"re(<circle cx="([-\d.e]+)" cy="([-\d.e]+)")re"));
+  const auto bars = all(std::regex(
+      R"re(<line x1="([-\d.e]+)" y1="([-\d.e]+)" x2="([-\d.e]+)" y2="([-\d.e]+)" stroke="#[0-9a-f]+" stroke-opacity)re"));
+  const auto lines =
+      all(std::regex(R"re(<polyline points="([-\d.e]+),([-\d.e]+) ([-\d.e]+),([-\d.e]+)")re"));
+  REQUIRE(panels.size() == 3);
+  REQUIRE(dots.size() == 12);  // in the map's order: per integral, fast, then reference
+  REQUIRE(bars.size() == 12);
+  REQUIRE(lines.size() == 6);  // one per integral and mode, through its dots
+  // The axes are shared: x = a + b·log10(t) within a panel, y = c − d·log10(e), d > 0, the same
+  // in every panel. Fitted on two dots, checked on all.
+  const auto log_error = [](double e) { return std::log10(std::max(e, 1e-17)); };
+  const double b = (dots[3][0] - dots[0][0]) /
+                   (std::log10(map.rows[3].seconds) - std::log10(map.rows[0].seconds));
+  const double d =
+      -(dots[3][1] - dots[0][1]) / (log_error(map.rows[3].p95) - log_error(map.rows[0].p95));
+  CHECK(b > 0.0);
+  CHECK(d > 0.0);
+  for (std::size_t i = 0; i < 12; ++i) {
+    const LightingMapRow& r = map.rows[i];
+    const std::vector<double>& panel = panels[i / 4];
+    CAPTURE(i);
+    const double a = dots[i / 4 * 4][0] - b * std::log10(map.rows[i / 4 * 4].seconds);
+    const double c = dots[0][1] + d * log_error(map.rows[0].p95);
+    CHECK(dots[i][0] == doctest::Approx(a + b * std::log10(r.seconds)).epsilon(1e-5));
+    CHECK(dots[i][1] == doctest::Approx(c - d * log_error(r.p95)).epsilon(1e-5));
+    // The bar from the median to the largest error, at the dot's x.
+    CHECK(bars[i][0] == dots[i][0]);
+    CHECK(bars[i][2] == dots[i][0]);
+    CHECK(bars[i][1] == doctest::Approx(c - d * log_error(r.median)).epsilon(1e-5));
+    CHECK(bars[i][3] == doctest::Approx(c - d * log_error(r.max)).epsilon(1e-5));
+    // Inside its panel, every point and bar end.
+    for (const double y : {dots[i][1], bars[i][1], bars[i][3]}) {
+      CHECK(y >= panel[1] - 1e-9);
+      CHECK(y <= panel[1] + panel[3] + 1e-9);
+    }
+    CHECK(dots[i][0] >= panel[0] - 1e-9);
+    CHECK(dots[i][0] <= panel[0] + panel[2] + 1e-9);
+  }
+  for (std::size_t l = 0; l < 6; ++l) {
+    CHECK(lines[l][0] == dots[2 * l][0]);
+    CHECK(lines[l][1] == dots[2 * l][1]);
+    CHECK(lines[l][2] == dots[2 * l + 1][0]);
+    CHECK(lines[l][3] == dots[2 * l + 1][1]);
+  }
+  // The labels (9 px type: at most 5.6 px per character, 10 px tall): each beside a dot, no two
+  // overlapping.
+  struct Label {
+    double x, y, width;
+  };
+  std::vector<Label> labels;
+  const std::regex label_re(
+      R"re(<text x="([-\d.e]+)" y="([-\d.e]+)" font-size="9"[^>]*>([^<]*)<)re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label_re);
+       it != std::sregex_iterator(); ++it) {
+    labels.push_back({std::stod((*it)[1].str()), std::stod((*it)[2].str()),
+                      5.6 * static_cast<double>((*it)[3].length())});
+  }
+  REQUIRE(labels.size() >= 6);
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    const Label& l = labels[i];
+    CHECK(std::any_of(dots.begin(), dots.end(), [&](const std::vector<double>& p) {
+      return std::fabs(l.y - p[1]) <= 12.0 && l.x >= p[0] - 8.0 - l.width && l.x <= p[0] + 8.0;
+    }));
+    for (std::size_t j = 0; j < i; ++j) {
+      const Label& o = labels[j];
+      const bool apart =
+          l.x + l.width <= o.x || o.x + o.width <= l.x || l.y <= o.y - 10.0 || o.y <= l.y - 10.0;
+      CHECK(apart);
+    }
+  }
 }
 
 TEST_CASE("lighting pixels: an image against itself has zero error; bad input names the image") {
