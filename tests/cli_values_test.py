@@ -187,6 +187,15 @@ spectrum_case(["--model", "tma", "--depth", "8", "--tma-attenuation", "thompson-
 spectrum_case(["--model", "donelan"], lambda w: donelan(w, 10, 100000), "Donelan")
 spectrum_case(["--model", "donelan", "--fetch", "30000", "--wind-speed", "8"],
               lambda w: donelan(w, 8, 30000), "Donelan --fetch, --wind-speed")
+# The end of --omega's range (>= 0): S(0) = 0 for every model (each vanishes faster than any
+# power of omega as omega -> 0), and a negative frequency is refused, naming the flag.
+for model in ("pierson-moskowitz", "jonswap", "tma", "donelan", "unified", "phillips"):
+    s0, s1 = s_of("--model", model, omega=[0.0, 0.9])
+    check(s0 == 0.0 and s1 > 0.0, f"spectrum --model {model} --omega 0,0.9: S = {s0}, {s1}")
+refused = subprocess.run([binary, "spectrum", "--model", "jonswap", "--omega", "-0.1"],
+                         capture_output=True, text=True)
+check(refused.returncode == 2 and "--omega" in refused.stderr,
+      f"spectrum --omega -0.1: exit {refused.returncode}, {refused.stderr.strip()}")
 
 
 # --- Directional spreading -----------------------------------------------------------------------
