@@ -7,16 +7,20 @@
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
 #include <ImfPartType.h>
+#include <ImfPreviewImageAttribute.h>
+#include <ImfStringVectorAttribute.h>
 #include <ImfTiledOutputFile.h>
 #include <doctest/doctest.h>
 #include <unistd.h>
 
 #include <half.h>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -292,6 +296,52 @@ TEST_CASE("read_exr_parts: clear errors for a missing file, a non-EXR file and d
   }
   const std::string e3 = error_of([&] { read_exr_parts(deep); });
   CHECK(e3.find("part 0: deep data (deepscanline) is not supported") != std::string::npos);
+}
+
+TEST_CASE(
+    "read_exr_parts: string-vector and preview attributes measured before OpenEXR reads them") {
+  // A file another tool could write: a multi-view list (stringvector) and a 3 × 2 preview.
+  const TempDir dir;
+  const std::string path = dir.file("views.exr");
+  {
+    Imf::Header header(2, 1);
+    header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+    header.insert("multiView", Imf::StringVectorAttribute({"left", "right", "centre"}));
+    header.insert("preview", Imf::PreviewImageAttribute(Imf::PreviewImage(3, 2)));
+    Imf::OutputFile file(path.c_str(), header);
+    std::vector<float> r{0.25f, -2.0f};
+    Imf::FrameBuffer frame;
+    frame.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(r.data()), sizeof(float),
+                                 2 * sizeof(float)));
+    file.setFrameBuffer(frame);
+    file.writePixels(1);
+  }
+  const std::vector<ExrPart> parts = read_exr_parts(path);
+  REQUIRE(parts.size() == 1);
+  REQUIRE(parts[0].image.channels.size() == 1);
+  CHECK(parts[0].image.channels[0].values == std::vector<float>{0.25f, -2.0f});
+  // The same file with the first string's length past the attribute's end: refused, named.
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string key("multiView\0stringvector\0", 23);
+  const std::size_t at = bytes.find(key);
+  REQUIRE(at != std::string::npos);
+  std::int32_t size = 0, first = 0;
+  std::memcpy(&size, bytes.data() + at + key.size(), 4);
+  std::memcpy(&first, bytes.data() + at + key.size() + 4, 4);
+  CHECK(size == 3 * 4 + 4 + 5 + 6);  // each string: its length (int32), then its bytes
+  CHECK(first == 4);
+  const std::int32_t too_long = size;
+  std::memcpy(bytes.data() + at + key.size() + 4, &too_long, 4);
+  const std::string broken = dir.file("broken.exr");
+  std::ofstream(broken, std::ios::binary) << bytes;
+  const std::string e = error_of([&] { read_exr_parts(broken); });
+  CAPTURE(e);
+  CHECK(e.find("multiView") != std::string::npos);
+  CHECK(e.find("holds a string of 27 bytes past its end") != std::string::npos);
 }
 
 TEST_CASE("worldToCamera and worldToNDC reproduce the camera's projection") {
