@@ -86,6 +86,45 @@ TEST_CASE("tracer: the quadtree finds what testing every triangle finds") {
   CHECK(hits > 200);
 }
 
+TEST_CASE("tracer: each quadtree box is its block's box, padded by 1e-9 of its size") {
+  // The boxes decide only what is tested, so a box too large passes every hit test above and
+  // costs time alone: check the boxes themselves.
+  const TestGrid g = make_grid(9, 7, [](double x, double z) { return std::sin(x) * (z - 3.0); });
+  const BoundsTree tree = build_bounds_tree(g.view());
+  const auto padding = [](const glm::dvec3& lower, const glm::dvec3& upper) {
+    return 1e-9 * (1.0 + std::max(glm::length(lower), glm::length(upper)));
+  };
+  std::size_t leaves = 0;
+  for (const BoundsTree::Node& n : tree.nodes) {
+    glm::dvec3 lower(HUGE_VAL), upper(-HUGE_VAL);
+    if (n.children[0] < 0) {
+      ++leaves;
+      const int cell = n.first / 2, i = cell % (g.columns - 1), j = cell / (g.columns - 1);
+      for (const int dj : {0, 1}) {
+        for (const int di : {0, 1}) {
+          const glm::dvec3& v = g.vertices[static_cast<std::size_t>((j + dj) * g.columns + i + di)];
+          lower = glm::min(lower, v);
+          upper = glm::max(upper, v);
+        }
+      }
+    } else {
+      for (const int c : n.children) {
+        lower = glm::min(lower, tree.nodes[static_cast<std::size_t>(c)].lower);
+        upper = glm::max(upper, tree.nodes[static_cast<std::size_t>(c)].upper);
+      }
+    }
+    // A leaf: its vertices' box, padded. A parent's box is its block's vertices' box, padded,
+    // so it lies within twice its padding of the union of its (padded) children.
+    const double pad = padding(lower, upper);
+    const double slack = n.children[0] < 0 ? 1e-15 * (1.0 + glm::length(upper)) : 2.0 * pad;
+    for (int axis = 0; axis < 3; ++axis) {
+      CHECK(std::fabs(n.lower[axis] - (lower[axis] - pad)) <= slack);
+      CHECK(std::fabs(n.upper[axis] - (upper[axis] + pad)) <= slack);
+    }
+  }
+  CHECK(leaves == static_cast<std::size_t>((g.columns - 1) * (g.rows - 1)));
+}
+
 TEST_CASE("two renderers: the ray tracer sees what the rasterizer sees, for any thread count") {
   // The glitter scene (sub-pixel glints, the horizon, choppy crests) at 4 spp, and refined
   // adaptively: both renderers shade the same displaced grid, so they differ only where a
