@@ -278,6 +278,9 @@ TEST_CASE(
   RenderedImage sky = clean;
   sky.radiance[static_cast<std::size_t>(2 * 24 + 5)][1] *= 1.0 + 1e-11;
   fails_with(scene, sky, "the open sky at pixel (5, 2)");
+  RenderedImage corner = clean;  // the first row and column are checked too
+  corner.radiance[0][1] *= 1.0 + 1e-11;
+  fails_with(scene, corner, "the open sky at pixel (0, 0)");
   RenderedImage negative = clean;
   negative.sea[static_cast<std::size_t>(15 * 24 + 3)] = {-1.0, -1.0, -1.0};
   fails_with(scene, negative, "sea at pixel (3, 15) has luminance -1");
