@@ -342,6 +342,19 @@ TEST_CASE(
   CAPTURE(e);
   CHECK(e.find("multiView") != std::string::npos);
   CHECK(e.find("holds a string of 27 bytes past its end") != std::string::npos);
+  // A preview of (2^32 - 1)^2 pixels, whose byte count (4 per pixel) overflows 64 bits: refused,
+  // named (the fuzzer found that overflow).
+  std::memcpy(bytes.data() + at + key.size() + 4, &first, 4);  // the string restored
+  const std::string preview_key("preview\0preview\0", 16);
+  const std::size_t p = bytes.find(preview_key);
+  REQUIRE(p != std::string::npos);
+  std::memset(bytes.data() + p + preview_key.size() + 4, 0xff, 8);  // width, height
+  const std::string huge = dir.file("huge_preview.exr");
+  std::ofstream(huge, std::ios::binary) << bytes;
+  const std::string e2 = error_of([&] { read_exr_parts(huge); });
+  CAPTURE(e2);
+  CHECK(e2.find("attribute preview (preview) declares 32 bytes, but its preview of 4294967295 x "
+                "4294967295 pixels needs more") != std::string::npos);
 }
 
 TEST_CASE("worldToCamera and worldToNDC reproduce the camera's projection") {

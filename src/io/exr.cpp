@@ -395,8 +395,16 @@ void check_attribute_value(std::istream& in, const std::string& type, std::int32
   } else if (type == "preview") {
     std::int32_t width = 0, height = 0;
     if (!read_int32(in, width) || !read_int32(in, height)) return;
-    used = 8 + 4 * static_cast<std::int64_t>(static_cast<std::uint32_t>(width)) *
-                   static_cast<std::uint32_t>(height);
+    // Both unsigned in OpenEXR; their product fits 64 bits, four times it need not.
+    const std::uint64_t pixels =
+        std::uint64_t{static_cast<std::uint32_t>(width)} * static_cast<std::uint32_t>(height);
+    if (pixels > static_cast<std::uint64_t>(size)) {
+      throw std::runtime_error("declares " + std::to_string(size) + " bytes, but its preview of " +
+                               std::to_string(static_cast<std::uint32_t>(width)) + " x " +
+                               std::to_string(static_cast<std::uint32_t>(height)) +
+                               " pixels needs more");
+    }
+    used = 8 + 4 * static_cast<std::int64_t>(pixels);
   } else if (type == "stringvector") {
     for (std::int32_t length = 0; used < size; used += length) {
       if (!read_int32(in, length)) return;
