@@ -13,6 +13,10 @@
   Schlick) and the BRDF against Bruneton 2010 written out here, for any normal and wind angle;
   the sea light linear in --sea-colour; --tolerance met by every error estimate; --order and
   --sun-order approaching the reference; --turbidity dimming the sun.
+- bench lighting: the Schlick, rational-erfc and masking error statistics against the same sweeps
+  written out here; the sun's printed/physical transmittance table; the sky integral converging
+  with the order. bench synthesis: KissFFT = FFTW, stage times within the frame, the float error
+  growing with time, every field's row.
 - sky: Y, x, y and linear sRGB against Preetham's formulas (appendix A.2) and the sRGB primaries;
   --irradiance against a quadrature of the sky; the hemisphere image (--size) pixel by pixel.
 - compare: every metric (max, RMS, RMSE, percentiles by nearest rank, ULP distance, failing
@@ -416,6 +420,128 @@ clear, hazy = brdf(*ref_args, "--turbidity", "2"), brdf(*ref_args, "--turbidity"
 check(hazy["L_sun_incident.B"] < clear["L_sun_incident.B"], "brdf --turbidity 6 did not dim the sun")
 check(hazy["E_sky.R"] > clear["E_sky.R"], "brdf --turbidity 6 did not raise the red sky irradiance")
 
+
+
+# --- bench lighting and bench synthesis: the error tables that reference/ACCURACY.md quotes ------
+
+def bench_tables(*args):
+    """The CSV tables of a bench's output (a line of names only starts one) and its '#' lines."""
+    r = subprocess.run([binary, "bench", *map(str, args)], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"FAIL: oceanref bench {' '.join(map(str, args))} exited {r.returncode}: {r.stderr}")
+
+    def number(x):
+        try:
+            float(x)
+            return True
+        except ValueError:
+            return False
+
+    tables, comments, header = [], [], None
+    for line in r.stdout.splitlines():
+        if line.startswith("#"):
+            comments.append(line)
+            continue
+        fields = line.split(",")
+        if not any(number(x) for x in fields):
+            header = fields
+            tables.append([])
+        else:
+            tables[-1].append(dict(zip(header, fields)))
+    return tables, "\n".join(comments)
+
+
+class Errors:  # the bench's relative-error statistics, written out again
+    def __init__(self):
+        self.max, self.sum, self.count = 0.0, 0.0, 0
+
+    def add(self, approximate, exact):
+        if exact != 0:
+            e = abs(approximate - exact) / abs(exact)
+            self.max, self.sum, self.count = max(self.max, e), self.sum + e, self.count + 1
+
+
+def masking(cos_theta, sigma2, erfc):  # G1 = 1 / (1 + Lambda); Lambda = 0 seen from straight up
+    return 1 / (1 + (smith_lambda(cos_theta, sigma2, erfc) if cos_theta < 1 else 0.0))
+
+
+errors = {"fresnel_schlick": Errors(), "erfc_rational": Errors(), "masking": Errors()}
+c = 0.0
+while c <= 1.0 + 1e-12:  # the bench's own sweeps, step for step (the same doubles)
+    errors["fresnel_schlick"].add(0.02 + 0.98 * (1 - c) ** 5, fresnel(c))
+    c += 0.001
+x = 0.001
+while x <= 10.0:
+    errors["erfc_rational"].add(rational_erfc(x), math.erfc(x))
+    x += 0.001
+for s2 in (1e-3, 5e-3, 0.01, 0.02, 0.05, 0.1):
+    for zenith in range(0, 90, 5):
+        for _ in range(7):  # seven azimuths: the masking sees only the zenith angle
+            cos_v = math.cos(math.radians(zenith))
+            errors["masking"].add(masking(cos_v, s2, rational_erfc), masking(cos_v, s2, math.erfc))
+lighting, _ = bench_tables("lighting", "--order", 16)
+rows = {r["approximation"].split(" ")[0]: r for r in lighting[0]}
+for name, row in (("fresnel_schlick", "fresnel_schlick_vs_exact"),
+                  ("erfc_rational", "erfc_rational_vs_exact"),
+                  ("masking", "masking_1/(1+lambda)_rational_vs_exact")):
+    e = errors[name]
+    check(int(rows[row]["samples"]) == e.count, f"bench lighting {row}: {rows[row]['samples']} "
+          f"samples, the sweep has {e.count}")
+    # The portable erfc and cos against Python's libm: far below the errors measured (1e-4..0.2).
+    close(rows[row]["max_relative_error"], e.max, 1e-6, f"bench lighting {row}: max")
+    close(rows[row]["mean_relative_error"], e.sum / e.count, 1e-6, f"bench lighting {row}: mean")
+for row in ("mean_fresnel_fit_vs_gauss_hermite", "sky_mirror_lookup_vs_integral",
+            "sky_filtered_lookup_vs_integral"):
+    check(int(rows[row]["samples"]) == 6 * 18 * 7, f"bench lighting {row}: not 756 samples")
+    check(0 < float(rows[row]["mean_relative_error"]) < float(rows[row]["max_relative_error"]),
+          f"bench lighting {row}: mean and max errors {rows[row]}")
+# Preetham's sun: a longer air path dims it, and the printed transmittance (appendix A.5) agrees
+# with the physical one overhead only.
+sun = lighting[1]
+zeniths = [float(r["sun_zenith_deg"]) for r in sun]
+check(zeniths == [0, 30, 45, 60, 70, 80, 85, 88], f"bench lighting: sun zeniths {zeniths}")
+physical = [float(r["Y_physical"]) for r in sun]
+check(all(a > b > 0 for a, b in zip(physical, physical[1:])),
+      f"bench lighting: the sun's Y does not fall with its zenith angle: {physical}")
+for r in sun:
+    close(r["ratio"], float(r["Y_printed"]) / float(r["Y_physical"]), 1e-12,
+          f"bench lighting: printed/physical at {r['sun_zenith_deg']} deg")
+close(sun[0]["ratio"], 1.0, 1e-3, "bench lighting: printed and physical transmittance overhead")
+check(float(sun[3]["ratio"]) < 0.5, "bench lighting: the printed transmittance at 60 deg")
+# The sky integral converges with the Gauss-Hermite order.
+orders = lighting[2]
+check([int(r["order"]) for r in orders] == [4, 8, 16, 32, 64, 128],
+      f"bench lighting: orders {[r['order'] for r in orders]}")
+sky_y = [float(r[next(k for k in r if k.startswith("L_sky_Y"))]) for r in orders]
+check(abs(sky_y[4] - sky_y[5]) < 1e-3 * sky_y[5] < abs(sky_y[0] - sky_y[5]),
+      f"bench lighting: L_sky_Y by order {sky_y} does not converge")
+
+synthesis, notes = bench_tables("synthesis", "--cascades", 2, "--resolution", 32, "--frames", 1,
+                         "--threads", 1)
+check([r["fft"] for r in synthesis[0]] == ["kissfft", "fftw"], "bench synthesis: the FFT rows")
+for r in synthesis[0]:  # one frame: its four stages take time, and no more than the frame
+    stages = [float(r[k]) for k in ("evolve_ms", "pack_ms", "transform_ms", "unpack_ms")]
+    check(min(stages) > 0 and sum(stages) <= float(r["frame_ms_median"]),
+          f"bench synthesis {r['fft']}: stage times {r}")
+difference = float(notes.split("largest field difference kissfft vs fftw: ")[1].split()[0])
+check(difference < 1e-14, f"bench synthesis: KissFFT and FFTW fields differ by {difference}")
+lookup = {r["field"]: r for r in synthesis[1]}
+check(sorted(lookup) == ["height", "jacobian-1", "slope"], f"bench synthesis: lookups {lookup}")
+for field, r in lookup.items():
+    direct = float(r["max_abs_direct"])
+    error = float(r[next(k for k in r if k.startswith("max_abs_bilinear_minus_direct"))])
+    check(0 < error < direct, f"bench synthesis: bilinear {field} error {error}, field {direct}")
+float_rows = synthesis[2]
+FIELDS = ["height", "slope_x", "slope_z", "disp_x", "disp_z", "ddx_dx", "ddz_dz", "ddx_dz"]
+check([(r["time_s"], r["field"]) for r in float_rows] ==
+      [(t, f) for t in ("10", "1000") for f in FIELDS], "bench synthesis: float rows' order")
+for near, far in zip(float_rows[:8], float_rows[8:]):
+    close(near["relative"], float(near["max_abs_float_minus_double"]) /
+          float(near["max_abs_double"]), 1e-12, f"bench synthesis: relative of {near['field']}")
+    # float's phase omega t loses digits as t grows: 1e-7 of the field at 10 s, 1e-5 at 1000 s.
+    check(float(near["relative"]) < 2e-6 < float(far["relative"]) < 2e-4,
+          f"bench synthesis: float error of {near['field']} at 10 s and 1000 s: "
+          f"{near['relative']}, {far['relative']}")
 
 # --- sky: Preetham 1999 (its appendix A.2), the sRGB primaries, the irradiance by quadrature ----
 
