@@ -425,7 +425,8 @@ check(hazy["E_sky.R"] > clear["E_sky.R"], "brdf --turbidity 6 did not raise the 
 # --- bench lighting and bench synthesis: the error tables that reference/ACCURACY.md quotes ------
 
 def bench_tables(*args):
-    """The CSV tables of a bench's output (a line of names only starts one) and its '#' lines."""
+    """A bench's output as tables and its '#' lines: a line of names only starts a CSV table (a
+    list of rows); name,value lines right under a '#' line form a table of their own (a dict)."""
     r = subprocess.run([binary, "bench", *map(str, args)], capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"FAIL: oceanref bench {' '.join(map(str, args))} exited {r.returncode}: {r.stderr}")
@@ -437,15 +438,20 @@ def bench_tables(*args):
         except ValueError:
             return False
 
-    tables, comments, header = [], [], None
+    tables, comments, header, pairs = [], [], None, None
     for line in r.stdout.splitlines():
+        fields = line.split(",")
         if line.startswith("#"):
             comments.append(line)
-            continue
-        fields = line.split(",")
-        if not any(number(x) for x in fields):
+            header, pairs = None, None
+        elif not any(number(x) for x in fields):
             header = fields
             tables.append([])
+        elif header is None:
+            if pairs is None:
+                pairs = {}
+                tables.append(pairs)
+            pairs[fields[0]] = float(fields[1])
         else:
             tables[-1].append(dict(zip(header, fields)))
     return tables, "\n".join(comments)
@@ -542,6 +548,81 @@ for near, far in zip(float_rows[:8], float_rows[8:]):
     check(float(near["relative"]) < 2e-6 < float(far["relative"]) < 2e-4,
           f"bench synthesis: float error of {near['field']} at 10 s and 1000 s: "
           f"{near['relative']}, {far['relative']}")
+
+# bench study --quick: every table of the study on small sizes, each against its most exact
+# setting. A fast-lit scene whose stormy variant folds (whitecap threshold 0.5).
+with tempfile.TemporaryDirectory() as study_dir:
+    study_scene = json.load(open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
+                                              "reference/scenes/golden/pm_high_sun.json")))
+    study_scene["shading"] = {"accuracy": "fast", "whitecaps": True, "whitecap_threshold": 0.5}
+    study_path = os.path.join(study_dir, "scene.json")
+    json.dump(study_scene, open(study_path, "w"))
+    study, study_notes = bench_tables("study", "--quick", "--scene", study_path)
+check(len(study) == 12, f"bench study --quick: {len(study)} tables, expected 12")
+fft = study[0]  # 1. the FFT's fields at grid nodes equal direct summation, to rounding
+check(fft["max_abs_difference_at_nodes"] < 1e-12 and fft["direct_seconds_per_point"] > 0,
+      f"bench study: FFT vs direct {fft}")
+sampled = study[1]  # 2. the sampled spectrum misses less with more nodes and more cascades
+check([(r["N"], r["cascades"]) for r in sampled] == [("32", "1"), ("32", "2"), ("64", "1"),
+                                                      ("64", "2")], "bench study: N x cascades")
+for quantity in ("Hs_relative_error", "mss_relative_error"):
+    e = [abs(float(r[quantity])) for r in sampled]
+    check(e[0] > e[1] and e[2] > e[3] and e[0] > e[2] and e[1] > e[3],
+          f"bench study: {quantity} by N and cascades {e}")
+# The same sums written out: Theta(k) dk^2 (spectrum --wavevector) over each cascade's nodes in its
+# band [previous Nyquist, pi N / L) (golden-ratio sizes from 800 m), against the continuous
+# moments to lambda_min = 1.73 cm (spectrum --moments).
+study_spectrum = ["--model", "pierson-moskowitz", "--wind-speed", 8, "--wind-direction-deg", 20,
+                  "--spreading", "hasselmann"]
+continuous = oceanref("spectrum", *study_spectrum, "--moments", "--k-max", 2 * math.pi / 0.0173)[0]
+header = study_notes.split("to lambda_min (Hs ")[1].split(")")[0]  # "H m, mss M"
+close(header.split(" m, mss ")[0], continuous["Hs"], 1e-12, "bench study: the continuous Hs")
+close(header.split(" m, mss ")[1], continuous["mss"], 1e-12, "bench study: the continuous mss")
+for r in sampled:
+    n, count = int(r["N"]), int(r["cascades"])
+    sizes = [800.0 * (1 - 2 / (1 + math.sqrt(5))) ** i for i in range(count)]
+    nodes, lower = [], 0.0
+    for size in sizes:
+        dk, upper = 2 * math.pi / size, math.pi * n / size
+        for b in range(-n // 2, n // 2):
+            for a in range(-n // 2, n // 2):
+                k = math.hypot(a * dk, b * dk)
+                if 0 < k and lower <= k < upper:
+                    nodes.append((a * dk, b * dk, dk))
+        lower = upper
+    theta = [t for i in range(0, len(nodes), 1000) for t in oceanref(  # (a command line's limit)
+        "spectrum", *study_spectrum,
+        "--wavevector", ",".join(f"{kx!r}:{kz!r}" for kx, kz, _ in nodes[i:i + 1000]))]
+    m0 = sum(float(t["Theta"]) * dk * dk for t, (_, _, dk) in zip(theta, nodes))
+    mss = sum(float(t["Theta"]) * (kx * kx + kz * kz) * dk * dk
+              for t, (kx, kz, dk) in zip(theta, nodes))
+    close(1 + float(r["Hs_relative_error"]), 4 * math.sqrt(m0) / float(continuous["Hs"]), 1e-9,
+          f"bench study: N {n}, {count} cascades: sampled Hs")
+    close(1 + float(r["mss_relative_error"]), mss / float(continuous["mss"]), 1e-9,
+          f"bench study: N {n}, {count} cascades: sampled mss")
+for table, column, settings in ((study[2], "grid", ["32", "64", "128"]),
+                                (study[3], "spp", ["1", "4"])):
+    # 3-4. images approach the finest grid (256^2) and the most samples (16 spp)
+    check([r[column] for r in table] == settings, f"bench study: {column} rows")
+    e = [float(r["relative_rmse"]) for r in table]
+    check(all(1 > a > b > 0 for a, b in zip(e, e[1:])), f"bench study: {column} errors {e}")
+check("# 3. projected-grid resolution (80x45, 1 spp) vs 256^2" in study_notes and
+      "# 4. samples per pixel (40x24, grid 128) vs 16 spp" in study_notes,
+      "bench study --quick: the sizes of sections 3 and 4")
+foam = study[4]  # 5. whitecap footprints: a share of the nodes, and the Gaussian model's distance
+check(0 < foam["mean_coverage"] < 1 and
+      0 < foam["mean_abs_difference"] < foam["max_abs_difference"] < 1,
+      f"bench study: whitecap statistics {foam}")
+modes = {r["interpolation"]: r for r in study[5]}  # 6. interpolation against direct summation
+check(list(modes) == ["bilinear", "bicubic", "direct"], "bench study: interpolation rows")
+for q in ("max_abs_height_error_m", "max_abs_slope_error"):
+    check(float(modes["direct"][q]) == 0 < float(modes["bicubic"][q]) <
+          float(modes["bilinear"][q]), f"bench study: {q} by interpolation")
+# 7-8: the synthesis and lighting benches above, on the same settings: the same values.
+check(study[7:9] == synthesis[1:3], "bench study --quick: synthesis tables differ from "
+      "bench synthesis --cascades 2 --resolution 32 --frames 1")
+check(study[9:12] == lighting, "bench study --quick: lighting tables differ from bench lighting "
+      "--order 16")
 
 # --- sky: Preetham 1999 (its appendix A.2), the sRGB primaries, the irradiance by quadrature ----
 

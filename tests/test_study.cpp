@@ -208,6 +208,42 @@ TEST_CASE("lighting pixels: an image against itself has zero error; bad input na
   }
 }
 
+TEST_CASE("study sweeps: every knob ascends toward, and stays below, its most exact setting") {
+  // The study measures each setting against the finest one in the same run (ACCURACY.md,
+  // "Study"): a sweep out of order, or one that reaches its reference, would mislabel its table.
+  const auto ascending = [](const std::vector<int>& v) {
+    return !v.empty() && v.front() >= 1 && std::is_sorted(v.begin(), v.end()) &&
+           std::adjacent_find(v.begin(), v.end()) == v.end();
+  };
+  const StudySweeps full = study_sweeps(false, 3), quick = study_sweeps(true, 3);
+  for (const StudySweeps& s : {full, quick}) {
+    CHECK(ascending(s.fft_resolutions));
+    CHECK(ascending(s.cascade_counts));
+    CHECK(ascending(s.grid_columns));
+    CHECK(ascending(s.axes));
+    CHECK(s.grid_columns.back() < s.finest_grid);
+    CHECK(s.axes.back() < s.finest_axis);
+    CHECK(s.synthesis.threads == 3);
+  }
+  // The published tables (ACCURACY.md): N 32..256 x 1..4 cascades; grids 64..1024 against 2048²
+  // at 320x180; 1..16 spp against 64 at 160x90 on a 512² grid; 5 frames; Gauss-Hermite 64.
+  CHECK(full.fft_resolutions == std::vector<int>{32, 64, 128, 256});
+  CHECK(full.cascade_counts == std::vector<int>{1, 2, 3, 4});
+  CHECK(full.grid_columns == std::vector<int>{64, 128, 256, 512, 1024});
+  CHECK(full.finest_grid == 2048);
+  CHECK(full.grid_width * 9 == full.grid_height * 16);
+  CHECK(full.finest_axis == 8);
+  CHECK(full.spp_width == 160);
+  CHECK(full.synthesis.frames == 5);
+  CHECK(full.synthesis.resolution == SynthesisBenchOptions{}.resolution);
+  CHECK(full.lighting_order == 64);
+  // The quick sweep: smaller in every dimension.
+  CHECK(quick.finest_grid < full.finest_grid);
+  CHECK(quick.grid_width * quick.grid_height < full.grid_width * full.grid_height);
+  CHECK(quick.spp_width * quick.spp_height < full.spp_width * full.spp_height);
+  CHECK(quick.synthesis.resolution < full.synthesis.resolution);
+}
+
 TEST_CASE("study: FFT grids equal direct summation at the nodes; interpolation errors ordered") {
   const Scene scene = study_scene();
   const FftVsDirect r = study_fft_vs_direct(scene, 2);

@@ -119,7 +119,12 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   render_cmd->add_option("--spp", render_flags->spp, "samples per pixel (a square)")
       ->check(integer_in(1, 256, " (a square number)"))
       ->capture_default_str();
-  auto study_flags = std::make_shared<RenderFlags>();
+  struct StudyFlags {
+    std::string scene = "reference/scenes/default.json";
+    int threads = 2;
+    bool quick = false;
+  };
+  auto study_flags = std::make_shared<StudyFlags>();
   CLI::App* study = bench->add_subcommand(
       "study",
       "The speed/accuracy study: FFT vs direct, FFT resolution and cascades (Hs, mss), "
@@ -129,6 +134,9 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
   study->add_option("--threads", study_flags->threads, "worker threads")
       ->check(integer_in(1, 1024))
       ->capture_default_str();
+  study->add_flag("--quick", study_flags->quick,
+                  "the same tables on small sizes, in seconds (a test of the study, not a "
+                  "measurement)");
   struct LeanFlags {
     std::string scene;
     std::string sizes;
@@ -277,7 +285,7 @@ std::function<void(std::ostream&)> add_bench_command(CLI::App& app) {
       return;
     }
     if (study->parsed()) {
-      bench_study(out, study_flags->scene, study_flags->threads);
+      bench_study(out, study_flags->scene, study_flags->threads, study_flags->quick);
       return;
     }
     if (lighting->parsed()) {

@@ -363,12 +363,14 @@ double relative_rmse(const std::vector<Vec3>& a, const std::vector<Vec3>& refere
   return std::sqrt(err / std::max(ref, 1e-300));
 }
 
-void bench_study_impl(std::ostream& out, const std::string& path, int threads) {
+void bench_study_impl(std::ostream& out, const std::string& path, int threads, bool quick) {
   const Scene base = load_scene(path);
+  const StudySweeps sweeps = study_sweeps(quick, threads);
   // 1. FFT grid vs direct summation at the grid nodes of cascade 0.
   {
     const FftVsDirect r = study_fft_vs_direct(base, threads);
-    out << "# 1. FFT grids vs direct summation (default scene, all cascades' fields)\n"
+    out << "# 1. FFT grids vs direct summation (the synthesis of all cascades; cascade 0's "
+           "fields at 8 nodes along x)\n"
         << "fft_seconds_per_frame," << format_number(r.fft_seconds_per_frame)
         << "\nfft_seconds_per_node_of_cascade0," << format_number(r.fft_seconds_per_node)
         << "\ndirect_seconds_per_point," << format_number(r.direct_seconds_per_point)
@@ -382,8 +384,8 @@ void bench_study_impl(std::ostream& out, const std::string& path, int threads) {
            "spectrum to lambda_min (Hs "
         << format_number(exact.significant_wave_height) << " m, mss " << format_number(exact.mss)
         << ")\nN,cascades,Hs_relative_error,mss_relative_error,synthesis_seconds\n";
-    for (const int n : {32, 64, 128, 256}) {
-      for (const int count : {1, 2, 3, 4}) {
+    for (const int n : sweeps.fft_resolutions) {
+      for (const int count : sweeps.cascade_counts) {
         WaveSettings w = base.waves;
         w.resolution = w.low_resolution = n;
         w.sizes = golden_ratio_sizes(800.0, count, GoldenFactor::small);
@@ -429,22 +431,25 @@ void bench_study_impl(std::ostream& out, const std::string& path, int threads) {
   };
   {
     double t = 0.0;
-    const RenderedImage finest = render_with(2048, 1, 320, 180, &t);
-    out << "# 3. projected-grid resolution (320x180, 1 spp) vs 2048^2 (" << format_number(t)
-        << " s)\ngrid,relative_rmse,seconds\n";
-    for (const int columns : {64, 128, 256, 512, 1024}) {
-      const RenderedImage image = render_with(columns, 1, 320, 180, &t);
+    const int w = sweeps.grid_width, h = sweeps.grid_height;
+    const RenderedImage finest = render_with(sweeps.finest_grid, 1, w, h, &t);
+    out << "# 3. projected-grid resolution (" << w << 'x' << h << ", 1 spp) vs "
+        << sweeps.finest_grid << "^2 (" << format_number(t) << " s)\ngrid,relative_rmse,seconds\n";
+    for (const int columns : sweeps.grid_columns) {
+      const RenderedImage image = render_with(columns, 1, w, h, &t);
       out << columns << ',' << format_number(relative_rmse(image.radiance, finest.radiance)) << ','
           << format_number(t) << '\n';
     }
   }
   {
     double t = 0.0;
-    const RenderedImage finest = render_with(512, 8, 160, 90, &t);
-    out << "# 4. samples per pixel (160x90, grid 512) vs 64 spp (" << format_number(t)
+    const int w = sweeps.spp_width, h = sweeps.spp_height, grid = sweeps.spp_grid;
+    const RenderedImage finest = render_with(grid, sweeps.finest_axis, w, h, &t);
+    out << "# 4. samples per pixel (" << w << 'x' << h << ", grid " << grid << ") vs "
+        << sweeps.finest_axis * sweeps.finest_axis << " spp (" << format_number(t)
         << " s)\nspp,relative_rmse,seconds\n";
-    for (const int axis : {1, 2, 3, 4}) {
-      const RenderedImage image = render_with(512, axis, 160, 90, &t);
+    for (const int axis : sweeps.axes) {
+      const RenderedImage image = render_with(grid, axis, w, h, &t);
       out << axis * axis << ',' << format_number(relative_rmse(image.radiance, finest.radiance))
           << ',' << format_number(t) << '\n';
     }
@@ -491,12 +496,9 @@ void bench_study_impl(std::ostream& out, const std::string& path, int threads) {
   out << "# 6. interpolation modes vs direct summation\n";
   bench_interpolation(out, path, threads);
   out << "# 7. synthesis: KissFFT vs FFTW, float vs double fields\n";
-  Flags synthesis;
-  synthesis.threads = threads;
-  synthesis.frames = 5;
-  bench_synthesis_impl(out, synthesis);
+  bench_synthesis_impl(out, sweeps.synthesis);
   out << "# 8. BRDF options vs the exact terms\n";
-  bench_lighting_impl(out, 64);
+  bench_lighting_impl(out, sweeps.lighting_order);
 }
 }  // namespace
 
@@ -586,8 +588,45 @@ FftVsDirect study_fft_vs_direct(const Scene& scene, int threads) {
   return r;
 }
 
-void bench_study(std::ostream& out, const std::string& scene_path, int threads) {
-  bench_study_impl(out, scene_path, threads);
+StudySweeps study_sweeps(bool quick, int threads) {
+  StudySweeps s;
+  s.synthesis.threads = threads;
+  if (quick) {
+    s.fft_resolutions = {32, 64};
+    s.cascade_counts = {1, 2};
+    s.grid_columns = {32, 64, 128};
+    s.finest_grid = 256;
+    s.grid_width = 80;
+    s.grid_height = 45;
+    s.axes = {1, 2};
+    s.finest_axis = 4;
+    s.spp_grid = 128;
+    s.spp_width = 40;
+    s.spp_height = 24;
+    s.synthesis.cascades = 2;
+    s.synthesis.resolution = 32;
+    s.synthesis.frames = 1;
+    s.lighting_order = 16;
+  } else {
+    s.fft_resolutions = {32, 64, 128, 256};
+    s.cascade_counts = {1, 2, 3, 4};
+    s.grid_columns = {64, 128, 256, 512, 1024};
+    s.finest_grid = 2048;
+    s.grid_width = 320;
+    s.grid_height = 180;
+    s.axes = {1, 2, 3, 4};
+    s.finest_axis = 8;
+    s.spp_grid = 512;
+    s.spp_width = 160;
+    s.spp_height = 90;
+    s.synthesis.frames = 5;
+    s.lighting_order = 64;
+  }
+  return s;
+}
+
+void bench_study(std::ostream& out, const std::string& scene_path, int threads, bool quick) {
+  bench_study_impl(out, scene_path, threads, quick);
 }
 
 }  // namespace oceanref

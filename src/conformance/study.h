@@ -68,9 +68,23 @@ struct FftVsDirect {
 };
 FftVsDirect study_fft_vs_direct(const Scene& scene, int threads);
 
+// The study's sweeps: each knob's settings ascend toward its most exact setting (the finest
+// grid, the most samples per pixel), against which each is measured. The full sweep takes
+// minutes; `quick` is the same tables on small sizes (a test of the study, not a measurement).
+struct StudySweeps {
+  std::vector<int> fft_resolutions, cascade_counts;  // N and the cascade count (Hs, mss)
+  std::vector<int> grid_columns;                     // projected grid, against the finest
+  int finest_grid = 0, grid_width = 0, grid_height = 0;
+  std::vector<int> axes;  // samples per axis, against the most, on a grid of spp_grid²
+  int finest_axis = 0, spp_grid = 0, spp_width = 0, spp_height = 0;
+  SynthesisBenchOptions synthesis;
+  int lighting_order = 0;  // Gauss-Hermite order of the exact terms (bench lighting)
+};
+StudySweeps study_sweeps(bool quick, int threads);
+
 // The whole study (reference/ACCURACY.md, "Study"): FFT vs direct, FFT resolution and cascades,
 // projected-grid resolution, samples per pixel, whitecap statistics, interpolation, synthesis,
-// the BRDF options; each against its most exact setting in the same run.
-void bench_study(std::ostream& out, const std::string& scene_path, int threads);
+// the BRDF options; each against its most exact setting in the same run; on study_sweeps(quick).
+void bench_study(std::ostream& out, const std::string& scene_path, int threads, bool quick);
 
 }  // namespace oceanref
