@@ -76,6 +76,14 @@ def oceanref(*args):
     return list(csv.DictReader(io.StringIO(r.stdout)))
 
 
+def read_layers(path):
+    image = oiio.ImageInput.open(path)
+    spec = image.spec()
+    pixels = image.read_image(0, 0, 0, spec.nchannels, "float")
+    image.close()
+    return {name: pixels[:, :, i] for i, name in enumerate(spec.channelnames)}
+
+
 G = 9.81
 
 
@@ -734,6 +742,22 @@ def sky_hemisphere_image():
                                 math.radians(30))["Y"]
             close(float(pixels[row_, column, y_index]), want, 1e-6,
                   f"sky --size 16: Y at ({row_}, {column})")
+    # The sun disk adds the sun's radiance (sky --sun) to the sky's: on a 9-pixel image the
+    # centre of pixel (4, 6) is at zenith 90 * 4/9 = 40 deg, azimuth 0 - the sun's direction.
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "sun.exr")
+        subprocess.run([binary, "sky", "--sun-zenith-deg", "40", "--size", "9", "-o", path],
+                       check=True, capture_output=True)
+        layers = read_layers(path)
+    sun = oceanref("sky", "--sun-zenith-deg", "40", "--sun")[0]
+    for column, disk in ((6, 1.0), (5, 0.0)):
+        u, v = (2 * column + 1) / 9 - 1, 0.0
+        direction = (math.sin(math.pi / 2 * u), math.cos(math.pi / 2 * u), 0.0)
+        sky_only = oceanref("sky", "--sun-zenith-deg", "40",
+                            "--dir", ",".join(map(repr, direction)))[0]
+        for c in ("Y", "R", "G", "B"):
+            close(float(layers[c][4, column]), float(sky_only[c]) + disk * float(sun[c]), 1e-6,
+                  f"sky --size 9, sun at 40 deg: {c} at (4, {column})")
 
 
 sky_hemisphere_image()
@@ -882,14 +906,6 @@ def report(*args):
     if r.returncode != 0:
         sys.exit(f"FAIL: oceanref {' '.join(map(str, args))} exited {r.returncode}: {r.stderr}")
     return dict(line.split(",", 1) for line in r.stdout.splitlines() if "," in line)
-
-
-def read_layers(path):
-    image = oiio.ImageInput.open(path)
-    spec = image.spec()
-    pixels = image.read_image(0, 0, 0, spec.nchannels, "float")
-    image.close()
-    return {name: pixels[:, :, i] for i, name in enumerate(spec.channelnames)}
 
 
 def render_fields_acf_flags():
