@@ -784,17 +784,19 @@ def channel_metrics(g, c, a=0.0, r=0.0, floor=0.0, ulp=0):
     rms = math.sqrt(float(np.mean(g64 * g64)))
     scale = np.maximum(np.abs(g64), floor * rms)
     diff = np.abs(c64 - g64)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):  # (0/0 where both are zero)
         rel = np.where(diff == 0, 0.0, diff / scale)
     ulps = np.abs(ordered(c.ravel()) - ordered(g.ravel()))
     fails = ~(diff <= a + r * scale) & (ulps > ulp)
     ranks = sorted(rel)
     n = len(ranks)
     pct = [ranks[min(max(math.ceil(q / 100 * n), 1), n) - 1] for q in (50, 90, 99, 99.9)]
+    rmse = math.sqrt(float(np.mean(diff * diff)))
+    peak = float(np.abs(g64).max())  # PSNR: 20 log10(peak |golden| / RMSE); -inf for a zero golden
+    psnr = math.inf if rmse == 0 else -math.inf if peak == 0 else 20 * math.log10(peak / rmse)
     return {"max_rel": float(rel.max()), "max_abs": float(diff.max()), "golden_rms": rms,
             "max_ulp": int(ulps.max()), "failing": int(fails.sum()),
-            "rel_percentiles": pct + [float(rel.max())],
-            "rmse": math.sqrt(float(np.mean(diff * diff)))}
+            "rel_percentiles": pct + [float(rel.max())], "rmse": rmse, "psnr_db": psnr}
 
 
 def compare(*args, expect=None):
@@ -828,7 +830,7 @@ def compare_flags():
             got, _ = compare(cp, gp, *flags)
             for k, name in enumerate("RGB"):
                 want = channel_metrics(g[..., k], c[..., k], **thresholds)
-                for key in ("max_rel", "max_abs", "golden_rms", "rmse"):
+                for key in ("max_rel", "max_abs", "golden_rms", "rmse", "psnr_db"):
                     close(got[name][key], want[key], 1e-12, f"compare {' '.join(flags)}: {name} {key}")
                 for key in ("max_ulp", "failing"):
                     check(got[name][key] == want[key], f"compare {' '.join(flags)}: {name} {key} "
@@ -836,6 +838,19 @@ def compare_flags():
                 for q, (a_, b_) in enumerate(zip(got[name]["rel_percentiles"],
                                                  want["rel_percentiles"])):
                     close(a_, b_, 1e-12, f"compare {' '.join(flags)}: {name} percentile {q}")
+        # A golden of zeros: PSNR -inf where the candidate differs, +inf where it does not.
+        zero = np.zeros_like(g)
+        zero_path, mixed_path = os.path.join(tmp, "zero.exr"), os.path.join(tmp, "mixed.exr")
+        write_rgb(zero_path, zero)
+        mixed = zero.copy()
+        mixed[..., 0] = c[..., 0]
+        write_rgb(mixed_path, mixed)
+        got, _ = compare(mixed_path, zero_path)
+        for name in "RGB":
+            close(got[name]["psnr_db"], channel_metrics(zero[..., 0], mixed[..., "RGB".index(name)])
+                  ["psnr_db"], 0, f"compare against a zero golden: {name} psnr_db")
+        check(float(got["R"]["psnr_db"]) == -math.inf and float(got["G"]["psnr_db"]) == math.inf,
+              f"compare against a zero golden: PSNR {got['R']['psnr_db']}, {got['G']['psnr_db']}")
         # The thresholds at their boundary: R's largest relative error passes --rel equal to it
         # (|c - g| <= R s) and fails just below; --max-fail-share at the failing share.
         worst = channel_metrics(g[..., 0], c[..., 0], floor=0.1)["max_rel"]
