@@ -387,10 +387,47 @@ std::vector<double> SpecificHardValues(std::string_view name) {
 
 // clang-format on
 
+// ln|Γ(x)| by MPFR, rounded to a double (its sign is what the bisection below needs).
+double MpfrLgammaValue(double x) {
+  mpfr_t a, r;
+  mpfr_inits2(256, a, r, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_d(a, x, MPFR_RNDN);
+  MpfrLgamma(r, a, MPFR_RNDN);
+  const double v = mpfr_get_d(r, MPFR_RNDN);
+  mpfr_clears(a, r, static_cast<mpfr_ptr>(nullptr));
+  return v;
+}
+
+// The two zeros of ln|Γ| in each (−n−1, −n), n = 2 … 18, found by bisection on MPFR's value
+// (|Γ| → ∞ at both poles and is below 1 at −n − ½), and 17 points spread over ±6% of each zero's
+// distance to its pole: there ln|Γ| changes by orders of magnitude within 1e−10 for large n,
+// and no random argument lands (the portable lgamma has a narrow expansion around each zero).
+std::vector<double> LgammaZeroNeighbourhoods() {
+  std::vector<double> out;
+  for (int n = 2; n <= 18; ++n) {
+    const double middle = -n - 0.5;
+    for (const double pole : {-n - 1.0, -1.0 * n}) {
+      double positive = pole, negative = middle;  // lgamma > 0 near the pole, < 0 at the middle
+      for (int i = 0; i < 200; ++i) {
+        const double m = negative + 0.5 * (positive - negative);
+        if (m == negative || m == positive) break;
+        (MpfrLgammaValue(m) > 0.0 ? positive : negative) = m;
+      }
+      const double step = (positive - pole) / 128.0;
+      for (int k = -8; k <= 8; ++k) out.push_back(positive + k * step);
+    }
+  }
+  return out;
+}
+
 std::vector<double> UnaryHardCases(std::string_view name) {
   std::vector<double> v = CommonHardValues();
   const std::vector<double> s = SpecificHardValues(name);
   v.insert(v.end(), s.begin(), s.end());
+  if (name == "lgamma") {
+    const std::vector<double> z = LgammaZeroNeighbourhoods();
+    v.insert(v.end(), z.begin(), z.end());
+  }
   return WithNeighbours(v);
 }
 
