@@ -5,11 +5,14 @@
 #include <ImfDeepScanLineOutputFile.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfMultiPartOutputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfOutputPart.h>
 #include <ImfPartType.h>
 #include <ImfPreviewImageAttribute.h>
 #include <ImfStringVectorAttribute.h>
 #include <ImfTiledOutputFile.h>
+#include <ImfTiledOutputPart.h>
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -151,6 +154,50 @@ TEST_CASE("write_exr_parts rejects what it cannot write, leaving no file") {
   level.level_x = 1;
   CHECK(error_of([&] { write_exr_parts(path, {level}); }).find("level 0, 0") != std::string::npos);
   CHECK(std::filesystem::is_empty(dir.path));
+}
+
+TEST_CASE("read_exr_parts: the reading buffers of one part are released before the next") {
+  // Two 32 x 32 parts of one float channel (4096 B each), uncompressed: OpenEXR's line buffer is
+  // one row (128 B), its tile buffers two 16 x 16 tiles (2048 B). max_bytes must hold every part's
+  // pixels plus the largest buffer once, not once per part.
+  const TempDir dir;
+  for (const bool tiled : {false, true}) {
+    CAPTURE(tiled);
+    std::vector<Imf::Header> headers;
+    for (const char* name : {"a", "b"}) {
+      Imf::Header h(32, 32);
+      h.compression() = Imf::NO_COMPRESSION;
+      h.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+      h.setName(name);
+      if (tiled) h.setTileDescription(Imf::TileDescription(16, 16, Imf::ONE_LEVEL));
+      h.setType(tiled ? Imf::TILEDIMAGE : Imf::SCANLINEIMAGE);
+      headers.push_back(h);
+    }
+    const std::string path = dir.file(tiled ? "tiled_parts.exr" : "scanline_parts.exr");
+    std::vector<float> y(32 * 32, 0.5f);
+    {
+      Imf::MultiPartOutputFile file(path.c_str(), headers.data(), 2);
+      for (int i = 0; i < 2; ++i) {
+        Imf::FrameBuffer frame;
+        frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(y.data()), sizeof(float),
+                                     32 * sizeof(float)));
+        if (tiled) {
+          Imf::TiledOutputPart part(file, i);
+          part.setFrameBuffer(frame);
+          part.writeTiles(0, part.numXTiles() - 1, 0, part.numYTiles() - 1);
+        } else {
+          Imf::OutputPart part(file, i);
+          part.setFrameBuffer(frame);
+          part.writePixels(32);
+        }
+      }
+    }
+    const double needed = 2 * 4096.0 + (tiled ? 2048.0 : 128.0);
+    CHECK(read_exr_parts(path, needed).size() == 2);
+    const std::string e = error_of([&] { read_exr_parts(path, needed - 1.0); });
+    CAPTURE(e);
+    CHECK(e.find("part 1 'b': 32 x 32 pixels of 1 channels need") != std::string::npos);
+  }
 }
 
 TEST_CASE("read_exr_parts: a tiled mip-mapped and a rip-mapped file read at every level") {
