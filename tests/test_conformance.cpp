@@ -433,6 +433,39 @@ TEST_CASE("float32 backend: its draws and stages against oceanref's, entry by en
   CHECK(drawn > 100);
 }
 
+TEST_CASE("fields output: a foam sequence's channels are the accumulated foam, not the indicator") {
+  // The stormy golden scene made to fold (u = -6) with 12 earlier frames instead of its steady
+  // count: each c<i>.foam is accumulate_foam's - decayed foam of earlier frames, values strictly
+  // between 0 and 1 - not the instantaneous indicator 1(J < 0).
+  Scene scene = load_scene(std::string(OCEANREF_SOURCE_DIR) +
+                           "/reference/scenes/golden/jonswap_storm_foam_steady.json");
+  scene.foam.steps = 12;
+  scene.waves.choppiness.assign(scene.waves.sizes.size(), -6.0);
+  const Ocean ocean = realize_ocean(scene.waves, 2);
+  const FieldsImage image = fields_image(scene, ocean, 2);
+  const AccumulatedFoam foam =
+      accumulate_foam(ocean, scene.time, scene.foam, scene.shading.normals, 2);
+  for (std::size_t i = 0; i < foam.cascades.size(); ++i) {
+    const std::string name = "c" + std::to_string(i) + ".foam.V";
+    CAPTURE(name);
+    const std::vector<float>* channel = nullptr;
+    for (const ExrPart& p : image.parts) {
+      for (const ExrChannel& c : p.image.channels) {
+        if (c.name == name) channel = &c.values;
+      }
+    }
+    REQUIRE(channel != nullptr);
+    REQUIRE(channel->size() == foam.cascades[i].size());
+    int fractional = 0, different = 0;
+    for (std::size_t k = 0; k < channel->size(); ++k) {
+      different += (*channel)[k] != static_cast<float>(foam.cascades[i][k]) ? 1 : 0;
+      fractional += (*channel)[k] > 0.0f && (*channel)[k] < 1.0f ? 1 : 0;
+    }
+    CHECK(different == 0);
+    CHECK(fractional > 0);
+  }
+}
+
 TEST_CASE("float32 backend: scenes it cannot reproduce are refused by name") {
   const std::string root = std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/golden/";
   const Scene unified = load_scene(root + "unified_capillary_horizon_sun.json");
