@@ -131,8 +131,11 @@ TEST_CASE("preconditions of the shading and raster stages fire on wrong calls") 
   const SampleGrid samples{10, 10, 1};
   std::vector<Fragment> fragments(100);
   CHECK_NOTHROW(rasterize(vertices, {{0, 1, 2}}, samples, 0, 10, 0.1, fragments));
-  CHECK_THROWS_AS(rasterize(vertices, {{0, 1, 3}}, samples, 0, 10, 0.1, fragments),
-                  PreconditionError);
+  using Corners = std::array<std::uint32_t, 3>;
+  for (const Corners bad : {Corners{3, 1, 2}, Corners{0, 3, 2}, Corners{0, 1, 3}}) {
+    CHECK_THROWS_AS(rasterize(vertices, {bad}, samples, 0, 10, 0.1, fragments),
+                    PreconditionError);  // each corner one past the last vertex
+  }
   CHECK_THROWS_AS(rasterize(vertices, {{0, 1, 2}}, samples, 0, 11, 0.1, fragments),
                   PreconditionError);
   std::vector<Fragment> too_few(99);
