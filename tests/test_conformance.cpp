@@ -378,16 +378,17 @@ TEST_CASE(
     return true;
   };
   int combinations = 0;
-  for (const auto& [model, model_name] : kSpectrumModels) {
-    if (model == SpectrumModel::unified) continue;  // refused by the backend (tested below)
-    for (const auto& [spreading, spreading_name] : kSpreadingModels) {
-      if (spreading == SpreadingModel::unified) continue;
-      CAPTURE(model_name);
-      CAPTURE(spreading_name);
+  // (Choice members, not structured bindings: CAPTURE's lambda cannot capture those in clang.)
+  for (const auto& model : kSpectrumModels) {
+    if (model.value == SpectrumModel::unified) continue;  // refused by the backend (below)
+    for (const auto& spreading : kSpreadingModels) {
+      if (spreading.value == SpreadingModel::unified) continue;
+      CAPTURE(model.name);
+      CAPTURE(spreading.name);
       Scene s = scene;
-      s.waves.spectrum.model = model;
-      s.waves.spectrum.spreading = spreading;
-      if (model == SpectrumModel::tma) {
+      s.waves.spectrum.model = model.value;
+      s.waves.spectrum.spreading = spreading.value;
+      if (model.value == SpectrumModel::tma) {
         s.waves.spectrum.depth = 20.0;
         s.waves.spectrum.depth_attenuation = DepthAttenuation::thompson_vincent;
       }
@@ -395,13 +396,13 @@ TEST_CASE(
     }
   }
   CHECK(combinations == 5 * 8);
-  for (const auto& [dispersion, dispersion_name] : kDispersionKinds) {
-    CAPTURE(dispersion_name);
+  for (const auto& dispersion : kDispersionKinds) {
+    CAPTURE(dispersion.name);
     Scene s = scene;
-    s.waves.spectrum.dispersion = dispersion;
+    s.waves.spectrum.dispersion = dispersion.value;
     s.waves.spectrum.depth = 8.0;  // shallow enough for finite depth to matter at 100 m
     CHECK(passes(s));
-    if (dispersion == DispersionKind::capillary) {  // and a 0.3 m tile, k up to k_m/2
+    if (dispersion.value == DispersionKind::capillary) {  // and a 0.3 m tile, k up to k_m/2
       s.waves.sizes = {0.3};
       CHECK(passes(s));
     }
