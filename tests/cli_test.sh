@@ -397,10 +397,49 @@ expect 2 '--video: assembles the previews' render "$tmp/seq.json" -o "$tmp/s_#.e
 if command -v ffmpeg >/dev/null; then
   expect 0 '^frame,1$' render "$tmp/seq.json" -o "$tmp/v_#.exr" --png "$tmp/v_#.png" --frames 0:1 --video "$tmp/v.mp4"
   [ -s "$tmp/v.mp4" ] || fail "render --video wrote no video"
+  if command -v ffprobe >/dev/null; then
+    checks=$((checks + 1))
+    [ "$(ffprobe -v error -count_frames -show_entries stream=nb_read_frames,width,height \
+      -of csv=p=0 "$tmp/v.mp4")" = "32,18,2" ] || fail "render --video: not 2 frames of 32 x 18"
+  fi
 else
   expect 2 '--video: needs ffmpeg on PATH' render "$tmp/seq.json" -o "$tmp/v_#.exr" --png "$tmp/v_#.png" --frames 0:1 --video "$tmp/v.mp4"
   [ ! -e "$tmp/v_0.exr" ] || fail "render --video without ffmpeg rendered before refusing"
 fi
+# What oceanref asks of ffmpeg, with a stand-in on PATH that records its arguments and writes the
+# output (the machines have no ffmpeg): the frame rate, the first frame, the previews' pattern in
+# ffmpeg's form (a '%' of the name escaped), the frame count; the video appears under its name
+# only when ffmpeg succeeds, and no partial file is left when it fails.
+mkdir -p "$tmp/fakebin"
+cat >"$tmp/fakebin/ffmpeg" <<'SH'
+#!/bin/sh
+printf '%s\n' "$@" >"$FAKE_FFMPEG_ARGS"
+for last; do :; done
+[ -n "$FAKE_FFMPEG_FAIL" ] && { printf partial >"$last"; exit 1; }
+printf 'video' >"$last"
+SH
+chmod +x "$tmp/fakebin/ffmpeg"
+export FAKE_FFMPEG_ARGS="$tmp/ffmpeg_args"
+PATH="$tmp/fakebin:$PATH" expect 0 '^frame,2$' render "$tmp/seq.json" -o "$tmp/fv_##.exr" \
+  --png "$tmp/f%v_##.png" --frames 1:2 --fps 12.5 --video "$tmp/fv.mp4" --threads 2
+checks=$((checks + 1))
+[ "$(cat "$tmp/fv.mp4" 2>/dev/null)" = video ] || fail "render --video: no video from ffmpeg's output"
+args=$(tr '\n' ' ' <"$tmp/ffmpeg_args")
+case "$args" in
+*"-framerate 12.5 -start_number 1 -i $tmp/f%%v_%02d.png -frames:v 2 "*) ;;
+*) fail "render --video: ffmpeg arguments $args" ;;
+esac
+for k in 1 2; do
+  # shellcheck disable=SC2059 # the pattern is ffmpeg's printf form
+  [ -s "$(printf "$tmp/f%%v_%02d.png" "$k")" ] || fail "render --video: ffmpeg's pattern misses frame $k"
+done
+[ ! -e "$tmp/.oceanref-fv.partial.mp4" ] || fail "render --video: the partial file is left"
+rm -f "$tmp/fv.mp4"
+FAKE_FFMPEG_FAIL=1 PATH="$tmp/fakebin:$PATH" expect 2 'ffmpeg failed to assemble .*fv\.mp4' \
+  render "$tmp/seq.json" -o "$tmp/fv_##.exr" --png "$tmp/f%v_##.png" --frames 1:2 --video "$tmp/fv.mp4"
+[ ! -e "$tmp/fv.mp4" ] || fail "render --video: a video although ffmpeg failed"
+[ ! -e "$tmp/.oceanref-fv.partial.mp4" ] || fail "render --video: ffmpeg's partial output is left after it failed"
+unset FAKE_FFMPEG_ARGS
 
 # Adaptive sampling (render.pixel_tolerance): the samples behind the pixels and the capped ones
 # reported; a cap below what the tolerance needs warns on stderr; the samples layer with --aov.

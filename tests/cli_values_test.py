@@ -985,6 +985,42 @@ def render_fields_acf_flags():
         check(ok.returncode == 0 and refused.returncode != 0,
               f"render --max-memory: {kib}K gave exit {ok.returncode}, {estimate // 1024 - 1}K exit "
               f"{refused.returncode} (estimate {estimate} bytes)")
+        # bench render: --width, --height and --spp are the render's (the samples per second
+        # times the time are its 12 x 8 x 9 samples; the sea's share of the image is the mean
+        # coverage of `render` at that size); the stages lie within the total; the slope budget's
+        # columns add up (resolved + sigma2 = moment) for every normals and interpolation.
+        # The camera rolled, so that the horizon crosses the image aslant and the sea's share
+        # depends on the width as well as the height.
+        rolled = json.loads(json.dumps(base))
+        rolled["camera"]["up"] = [0.4, 1, 0]
+        rolled_path = os.path.join(tmp, "rolled.json")
+        json.dump(rolled, open(rolled_path, "w"))
+        tables, comments = bench_tables("render", "--scene", rolled_path, "--width", 12, "--height",
+                                        8, "--spp", 9, "--threads", 1)
+        check(" at 12x8, 9 spp, 1 threads;" in comments, f"bench render: header {comments!r}")
+        stages = {r["stage"]: float(r["seconds"]) for r in tables[0]}
+        close(stages["samples_per_second"] * stages["render_total"], 12 * 8 * 9, 1e-9,
+              "bench render: samples per second x render time")
+        check(sum(stages[k] for k in ("synthesis", "grid", "raster", "shading")) <=
+              stages["render_total"] * (1 + 1e-9), f"bench render: stages beyond the total {stages}")
+        sized = os.path.join(tmp, "sized.exr")
+        rolled["render"].update({"width": 12, "height": 8, "samples_per_pixel": 9})
+        json.dump(rolled, open(rolled_path, "w"))
+        report("render", rolled_path, "-o", sized, "--aov")
+        sea_share = float(comments.split("sea covers ")[1].split(" of the image")[0])
+        close(sea_share, read_layers(sized)["coverage"].astype(np.float64).mean(), 1e-6,
+              "bench render: the sea's share of the image")
+        check(0 < sea_share < 1, f"bench render: sea share {sea_share}")
+        check([r["interpolation"] for r in tables[1]] == ["bilinear", "bicubic", "direct"],
+              f"bench render: interpolation rows {tables[1]}")
+        budget = tables[2]
+        check(len(budget) >= 6 and len({(r["normals"], r["interpolation"]) for r in budget}) ==
+              len(budget) // 2, f"bench render: slope budget rows {budget}")
+        for r in budget:
+            what = f"bench render: slope budget {r['normals']} {r['interpolation']} {r['axis']}"
+            close(float(r["resolved"]) + float(r["sigma2"]), float(r["moment"]), 1e-9, what)
+            close(float(r["identity_error"]) + 1,
+                  (float(r["resolved"]) + float(r["sigma2"])) / float(r["moment"]), 1e-12, what)
         # fields --time is the scene's time.
         timed = json.loads(json.dumps(base))
         timed["time"] = 2.5

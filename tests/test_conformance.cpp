@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "conformance/channel_name.h"
@@ -15,6 +16,7 @@
 #include "conformance/fields_output.h"
 #include "conformance/float32_backend.h"
 #include "conformance/report.h"
+#include "conformance/sequence.h"
 #include "scene/scene.h"
 #include "waves/random.h"
 
@@ -607,4 +609,25 @@ TEST_CASE("compare --converged: the golden's pixel_error + lighting_error join t
   CHECK(parse_profile(R"({"default": {"rel": 0}, "golden_error": true})", "p").golden_error);
   CHECK_THROWS_AS(parse_profile(R"({"default": {"rel": 0}, "golden_error": 1})", "p"),
                   std::invalid_argument);
+}
+
+TEST_CASE("sequence names: the last run of '#' is the frame number; ffmpeg's form of the pattern") {
+  CHECK(frame_path("ocean_####.exr", 7) == "ocean_0007.exr");
+  CHECK(frame_path("run#2/f_##.png", 3) == "run#2/f_03.png");  // the last run only
+  CHECK(frame_path("f_##.exr", 12345) == "f_12345.exr");       // never truncated
+  CHECK(frame_path("#", 0) == "0");
+  CHECK(frame_path("a##b#", 42) == "a##b42");
+  CHECK_THROWS_AS(frame_path("ocean.exr", 1), std::invalid_argument);
+  CHECK(ffmpeg_pattern("ocean_####.png") == "ocean_%04d.png");
+  CHECK(ffmpeg_pattern("50%/run#2_##%.png") == "50%%/run#2_%02d%%.png");
+  CHECK(ffmpeg_pattern("#") == "%01d");
+  CHECK_THROWS_AS(ffmpeg_pattern("ocean.png"), std::invalid_argument);
+}
+
+TEST_CASE("sequence frames: frame k is the scene at time + k/fps, nothing else changed") {
+  const Scene scene = parse_scene(nlohmann::json::parse(R"({"time": 1.5, "waves": {}})"));
+  const Scene f = frame_scene(scene, 3, 12.0);
+  CHECK(f.time == 1.5 + 3.0 / 12.0);
+  CHECK(frame_scene(scene, 0, 24.0).time == 1.5);
+  CHECK(f.image.width == scene.image.width);
 }

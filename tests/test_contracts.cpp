@@ -3,6 +3,7 @@
 // and the golden suite (conformance/golden.h), checked without the command line.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -16,6 +17,7 @@
 #include "conformance/fields_output.h"
 #include "conformance/golden.h"
 #include "conformance/render_output.h"
+#include "io/exr.h"
 #include "io/sha256.h"
 #include "scene/scene.h"
 #include "test_support.h"
@@ -91,6 +93,7 @@ TEST_CASE("render file: channels, attributes and the two hashes as docs/FILES.md
   CHECK(r.exr.height == 27);
   // The float32 pixel hash, recomputed from the channels here.
   CHECK(r.pixel_sha256 == rgb_float32_hash(r.exr));
+  CHECK(pixel_sha256(r.exr.channels) == r.pixel_sha256);  // the library's helper for one image
   CHECK(r.exr.attributes.at("oceanref.pixel_sha256") == r.pixel_sha256);
   CHECK(r.exr.attributes.at("oceanref.radiance_f64_sha256") == r.radiance_f64_sha256);
   CHECK(r.exr.attributes.at("oceanref.scene_sha256") == sha256_hex(scene.canonical));
@@ -248,6 +251,95 @@ TEST_CASE("golden suite: verify passes on a copy, fails naming the hash after a 
   CHECK(rewritten["entries"][0]["lighting_accuracy"].get<std::string>().rfind("fast", 0) == 0);
   CHECK(verify_golden(root, options).pass());
   std::filesystem::remove_all(root);
+}
+
+TEST_CASE(
+    "golden update: a converged scene's manifest entry holds its sampling and pixel error, its "
+    "file the error layers; a fixed-spp golden's file is R, G, B") {
+  // The suite's converged golden, made small (24 × 16) and capped at 6² samples (S = 2, one
+  // refinement): the tolerance of 1% leaves pixels at the cap.
+  const std::string name = "default_converged_fast";
+  const auto root = golden_copy("oceanref_test_golden_converged", name);
+  const auto scene_path = root / "scenes" / "golden" / (name + ".json");
+  nlohmann::json s = read_json(scene_path);
+  s["render"]["width"] = 24;
+  s["render"]["height"] = 16;
+  s["render"]["max_samples_per_pixel"] = 36;
+  s["grid"] = {{"columns", 128}, {"rows", 128}, {"margin", 0.15}};
+  write_json(scene_path, s);
+  GoldenOptions options;
+  options.threads = 2;
+  REQUIRE(update_golden(root, options).pass());
+  const nlohmann::json entry = read_json(root / "golden" / "manifest.json")["entries"][0];
+  CHECK(entry.at("pixel_tolerance").get<double>() == 0.01);
+  CHECK(entry.at("max_samples_per_pixel").get<int>() == 36);
+  CHECK(entry.at("width").get<int>() == 24);
+  CHECK(entry.at("height").get<int>() == 16);
+  CHECK(entry.at("lighting_accuracy").get<std::string>().rfind("fast", 0) == 0);
+  CHECK(entry.at("unconverged_samples").get<long>() == 0);
+  CHECK_FALSE(entry.contains("lighting_error_max_relative"));  // fast lighting: no estimate
+
+  // The stored file keeps the layers of a converged golden: the samples per pixel and the
+  // pixel error, which the entry summarises (recomputed here from the file's float32 values).
+  const ExrImage exr = read_exr((root / "golden" / (name + ".exr")).string());
+  const auto channel = [&](const std::string& n) -> const std::vector<float>& {
+    for (const ExrChannel& c : exr.channels) {
+      if (c.name == n) return c.values;
+    }
+    FAIL("no channel " << n);
+    return exr.channels[0].values;
+  };
+  const std::vector<float>& samples = channel("samples");
+  REQUIRE(samples.size() == 24u * 16u);
+  double sum = 0.0;
+  int at_cap = 0;
+  for (const float n : samples) {
+    CHECK(n >= 4.0f);
+    CHECK(n <= 36.0f);
+    sum += static_cast<double>(n);
+    at_cap += n == 36.0f ? 1 : 0;
+  }
+  CHECK(entry.at("pixel_samples_mean").get<double>() ==
+        doctest::Approx(sum / 384.0).epsilon(1e-12));
+  const long capped = entry.at("capped_pixels").get<long>();
+  CHECK(capped > 0);
+  CHECK(capped <= at_cap);
+  std::vector<double> relative;
+  for (const char* c : {"R", "G", "B"}) {
+    const std::vector<float>& error = channel(std::string("pixel_error.") + c);
+    const std::vector<float>& value = channel(c);
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      if (value[i] > 0.0f)
+        relative.push_back(static_cast<double>(error[i]) / static_cast<double>(value[i]));
+    }
+  }
+  std::sort(relative.begin(), relative.end());
+  REQUIRE(relative.size() > 100);
+  // The max is exact in double; from float32 values it agrees to ~1e-7. The quantiles are the
+  // lower edges of 2⁻⁸-wide relative bins: within 2⁻⁷ below the order statistic.
+  CHECK(entry.at("pixel_error_max_relative").get<double>() ==
+        doctest::Approx(relative.back()).epsilon(1e-6));
+  for (const std::pair<const char*, double>& quantile :
+       {std::pair{"pixel_error_p50_relative", 0.5}, std::pair{"pixel_error_p99_relative", 0.99}}) {
+    const std::string key = quantile.first;
+    const double q = quantile.second;
+    CAPTURE(key);
+    const double v = entry.at(key).get<double>();
+    const auto rank = static_cast<std::size_t>(q * static_cast<double>(relative.size()));
+    CHECK(v <= relative[std::min(rank + 1, relative.size() - 1)] * (1.0 + 1e-6));
+    CHECK(v >= relative[rank > 0 ? rank - 1 : 0] * (1.0 - 1.0 / 128.0));
+  }
+  CHECK(entry.at("pixel_error_p99_relative").get<double>() > 0.01);  // the capped pixels
+  std::filesystem::remove_all(root);
+
+  // A fixed-sample golden's file has the image alone.
+  const auto tiny = golden_copy("oceanref_test_golden_tiny_layers", kTinyGolden);
+  REQUIRE(update_golden(tiny, options).pass());
+  const ExrImage plain = read_exr((tiny / "golden" / (kTinyGolden + ".exr")).string());
+  std::set<std::string> names;
+  for (const ExrChannel& c : plain.channels) names.insert(c.name);
+  CHECK(names == std::set<std::string>{"R", "G", "B"});
+  std::filesystem::remove_all(tiny);
 }
 
 TEST_CASE(

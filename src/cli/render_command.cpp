@@ -1,8 +1,11 @@
 #include "cli/render_command.h"
 
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -230,6 +233,21 @@ void render_sequence(std::ostream& out, const Scene& scene, const RenderOutputOp
   }
 }
 
+// Runs `argv` (argv[0] looked up on PATH) without a shell, so that no character of a path or
+// an option is interpreted; its exit status, or -1 when it could not be started.
+int run_program(const std::vector<std::string>& argv) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 // `render --video`: the previews of frames [first, last] assembled by ffmpeg into `video`,
 // written under a temporary name and renamed (no partial file).
 void assemble_video(const std::string& png, std::pair<int, int> frames, double fps,
@@ -238,22 +256,32 @@ void assemble_video(const std::string& png, std::pair<int, int> frames, double f
   const std::filesystem::path temporary =
       target.parent_path() /
       (".oceanref-" + target.stem().string() + ".partial" + target.extension().string());
-  const auto quote = [](const std::string& text) {
-    std::string q = "'";
-    for (const char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-  };
-  const std::string command = "ffmpeg -y -loglevel error -framerate " + format_number(fps) +
-                              " -start_number " + std::to_string(frames.first) + " -i " +
-                              quote(ffmpeg_pattern(png)) + " -frames:v " +
-                              std::to_string(frames.second - frames.first + 1) +
-                              " -c:v libx264 -pix_fmt yuv420p -vf pad=ceil(iw/2)*2:ceil(ih/2)*2 " +
-                              quote(temporary.string());
+  const std::vector<std::string> command{"ffmpeg",
+                                         "-y",
+                                         "-loglevel",
+                                         "error",
+                                         "-framerate",
+                                         format_number(fps),
+                                         "-start_number",
+                                         std::to_string(frames.first),
+                                         "-i",
+                                         ffmpeg_pattern(png),
+                                         "-frames:v",
+                                         std::to_string(frames.second - frames.first + 1),
+                                         "-c:v",
+                                         "libx264",
+                                         "-pix_fmt",
+                                         "yuv420p",
+                                         "-vf",
+                                         "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                         temporary.string()};
   log_progress("assembling " + video + " with ffmpeg");
-  if (std::system(command.c_str()) != 0) {
+  if (run_program(command) != 0) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
-    throw std::runtime_error("ffmpeg failed to assemble " + video + " (command: " + command + ")");
+    std::string words;
+    for (const std::string& a : command) words += (words.empty() ? "" : " ") + a;
+    throw std::runtime_error("ffmpeg failed to assemble " + video + " (command: " + words + ")");
   }
   std::filesystem::rename(temporary, target);
 }
