@@ -13,7 +13,9 @@ tests that compare with reference/golden/manifest.json skip those comparisons). 
 run as shards of ~10 doctest cases; the first failing shard or script kills the mutant (a
 timeout, 3x the job's baseline time + 60 s, or a crash counts as a failure) and the others are
 stopped (the scripts stop at their first failure: OCEANREF_TESTS_FAIL_FAST=1). A mutant
-survives when every job passes.
+survives when every job passes. At the end, every job that killed a mutant runs again on the
+unmutated tree: if one fails (the machine changed during the run), the run is invalid and no
+report is written.
 
 Mutation operators (on the code of src/*/*.cpp; comments, strings and preprocessor lines are
 never changed):
@@ -461,6 +463,8 @@ def main():
     work = os.path.abspath(args.work)
     if args.from_results:
         saved = json.load(open(os.path.join(work, "results.json")))
+        if saved.get("invalid"):
+            sys.exit(f"mutation: that run is invalid: {saved['invalid']}")
         args.seed, args.per_folder = saved["seed"], saved["per_folder"]
         args.jobs = saved.get("jobs", args.jobs)
         block = report_block(saved["results"], args, saved["commit"], saved["seconds"],
@@ -553,11 +557,21 @@ def main():
                   f"{' by ' + failed if result['status'] == 'killed' else ''} "
                   f"({result['seconds']:.0f} s, {(time.time() - begin) / 60:.0f} min)", flush=True)
     build_all(build)  # the tree restored
+    # The jobs that killed must still pass on the unmutated tree: a change of the machine during
+    # the run (a tool installed or removed, a disk filling up) would otherwise kill every later
+    # mutant for a reason that has nothing to do with it.
+    print(f"mutation: the killing jobs again on the unmutated tree: {', '.join(sorted(kills))}",
+          flush=True)
+    failed, why, _, _ = run_tests([j for j in jobs if j["name"] in kills], work, args.jobs,
+                                  timeouts)
     seconds = time.time() - begin
+    invalid = f"the unmutated tree fails {failed} ({why}) at the end of the run" if failed else ""
     json.dump(dict(commit=head, seed=args.seed, per_folder=args.per_folder, seconds=seconds,
                    jobs=args.jobs, date=time.strftime("%Y-%m-%d"), skipped_jobs=skipped_jobs,
-                   cpu=cpu_model(), baseline=baseline, results=results),
+                   cpu=cpu_model(), baseline=baseline, results=results, invalid=invalid),
               open(os.path.join(work, "results.json"), "w"), indent=1)
+    if invalid:
+        sys.exit(f"mutation: the run is invalid: {invalid}; see {work}/tmp (no report written)")
     block = report_block(results, args, head, seconds, skipped_jobs)
     print(block)
     if args.report:
