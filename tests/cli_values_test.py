@@ -26,7 +26,10 @@
   the pixels; --lighting-error bounding |fast - reference|; --max-memory at the estimate.
   fields: --time against the scene's time; --at at a node against the FFT. acf: the lags of
   --length and --samples-per-period, acf(0) = 1, one period of a single cascade along x and z
-  (and not along the diagonal), --seed, --lines and --area reaching the estimate.
+  (and not along the diagonal), --seed, --lines and --area reaching the estimate; --svg's plot
+  read back: every point at its CSV value on the plot's own grid, titles centred, the legend.
+- bench render: --width, --height, --spp reaching the render (samples, the sea's share of a
+  rolled camera's image), the slope budget's columns adding up.
 
     tests/cli_values_test.py PATH/TO/oceanref
 
@@ -1073,6 +1076,94 @@ def render_fields_acf_flags():
             other = acf("--lines", given["--lines"], "--length", 2, "--samples-per-period", 4,
                         "--area", given["--area"], *([flag, value] if flag == "--seed" else []))
             check(float(other[3]["acf"]) != float(rows[3]["acf"]), f"acf {flag} {value} changes nothing")
+
+        acf_plot(single, tmp)
+
+
+def acf_plot(single, tmp):
+    """acf --svg shows the CSV. The plot's frame is read from the plot itself (the grid lines of
+    periods 0 and 1 and of r = -0.6 and 1.0, found by their labels); then every point of every
+    scene's line lies at its (tau/L, acf) of the CSV, the grid spans the lags, the title and the
+    axis labels are centred on the plot area, and the legend gives each line's colour and scene
+    name beside the plot, one entry under the other."""
+    import xml.etree.ElementTree as ET
+    paths = []
+    for name, seed in (("calm_one", 1), ("calm<two>", 2)):
+        scene = json.loads(json.dumps(single))
+        scene["seed"] = seed
+        paths.append(os.path.join(tmp, name + ".json"))
+        json.dump(scene, open(paths[-1], "w"))
+    csv_path, svg_path = os.path.join(tmp, "plot.csv"), os.path.join(tmp, "plot.svg")
+    r = subprocess.run([binary, "acf", *paths, "--threads", "1", "--lines", "16", "--length", "3",
+                        "--samples-per-period", "4", "--area", "4", "-o", csv_path, "--svg",
+                        svg_path], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"FAIL: oceanref acf --svg: {r.stderr}")
+    rows = list(csv.DictReader(open(csv_path)))
+    ns = "{http://www.w3.org/2000/svg}"
+    svg = ET.parse(svg_path).getroot()
+    lines = [{k: float(v) for k, v in e.attrib.items() if k in ("x1", "y1", "x2", "y2")} | {
+        "stroke": e.get("stroke")} for e in svg.iter(ns + "line")]
+    texts = [(e.text, float(e.get("x")), float(e.get("y")), e.get("text-anchor")) for e in
+             svg.iter(ns + "text")]
+    px = 0.011  # positions are written to 0.01 px
+    # Periods: vertical grid lines, each with its integer label under it.
+    period_x = {int(t): x for t, x, _, a in texts if a == "middle" and t.isdigit() and
+                any(l["x1"] == l["x2"] == x for l in lines)}
+    check(sorted(period_x) == [0, 1, 2, 3], f"acf --svg: period grid lines {sorted(period_x)}")
+    x0, unit = period_x[0], period_x[1] - period_x[0]
+    for p, x in period_x.items():
+        check(abs(x - (x0 + p * unit)) <= 3 * px, f"acf --svg: grid line of period {p} at x {x}")
+    # Values: horizontal grid lines from the left edge, each labelled at its left.
+    value_y = {}
+    for t, x, y, a in texts:
+        if a == "end":
+            match = [l for l in lines if l["y1"] == l["y2"] and abs(l["y1"] + 4 - y) <= px and
+                     l["x1"] == x0 and abs(l["x1"] - 6 - x) <= px]
+            check(len(match) == 1, f"acf --svg: the label {t} has no grid line")
+            value_y[float(t)] = y - 4
+    check(sorted(value_y) == [-0.6, -0.4, -0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0],
+          f"acf --svg: value grid lines {sorted(value_y)}")
+    y_of = lambda v: value_y[-0.6] + (value_y[1.0] - value_y[-0.6]) * (min(max(v, -0.6), 1) + 0.6) / 1.6
+    for v, y in value_y.items():
+        check(abs(y - y_of(v)) <= 3 * px, f"acf --svg: grid line of r = {v} at y {y}")
+    right = x0 + 3 * unit  # the longest lag: 3 periods
+    check(all(abs(l["x2"] - right) <= 3 * px for l in lines if l["x1"] == x0 and l["y1"] == l["y2"]),
+          "acf --svg: the value grid lines do not end at the longest lag")
+    # Every point of each scene's line.
+    polylines = list(svg.iter(ns + "polyline"))
+    check(len(polylines) == 2, f"acf --svg: {len(polylines)} lines for 2 scenes")
+    names = [os.path.basename(p)[:-5] for p in paths]
+    for name, line in zip(names, polylines):
+        data = [(float(r["tau_periods"]), float(r["acf"])) for r in rows if r["scene"] == name]
+        points = [tuple(map(float, xy.split(","))) for xy in line.get("points").split()]
+        check(len(points) == len(data) == 13, f"acf --svg: {name}: {len(points)} points")
+        for (tau, a), (x, y) in zip(data, points):
+            check(abs(x - (x0 + tau * unit)) <= 4 * px and abs(y - y_of(a)) <= 4 * px,
+                  f"acf --svg: {name}: the point of tau {tau}, acf {a} is at ({x}, {y})")
+    # Titles centred on the plot area (the y label on its height, rotated about its anchor).
+    centre_x, centre_y = (x0 + right) / 2, (value_y[1.0] + value_y[-0.6]) / 2
+    title = [t for t in texts if t[0].startswith("Autocorrelation")]
+    x_label = [t for t in texts if t[0].startswith("lag")]
+    check(len(title) == len(x_label) == 1 and abs(title[0][1] - centre_x) <= 3 * px and
+          abs(x_label[0][1] - centre_x) <= 3 * px and title[0][2] < value_y[1.0] and
+          x_label[0][2] > value_y[-0.6], f"acf --svg: title or x label off the centre {title} {x_label}")
+    y_label = [e for e in svg.iter(ns + "text") if e.text.startswith("r(")]
+    check(len(y_label) == 1 and abs(float(y_label[0].get("y")) - centre_y) <= 3 * px and
+          y_label[0].get("transform") == f"rotate(-90 {y_label[0].get('x')} {y_label[0].get('y')})"
+          and float(y_label[0].get("x")) < x0, f"acf --svg: y label {y_label and y_label[0].attrib}")
+    # The legend: right of the plot, a line of each scene's colour beside its (escaped) name.
+    legend = [l for l in lines if l["x1"] > right and l["y1"] == l["y2"]]
+    check([l["stroke"] for l in legend] == [p.get("stroke") for p in polylines] and
+          len({l["stroke"] for l in legend}) == 2, f"acf --svg: legend colours {legend}")
+    labels = [t for t in texts if t[0] in names]
+    check([t[0] for t in labels] == names, f"acf --svg: legend names {labels}")
+    for l, t in zip(legend, labels):
+        check(t[1] > l["x2"] and abs(t[2] - (l["y1"] + 4)) <= px,
+              f"acf --svg: the name {t[0]} is not beside its line")
+    check(len(legend) == 2 and legend[1]["y1"] - legend[0]["y1"] >= 11 and
+          float(svg.get("width")) > labels[-1][1] and float(svg.get("height")) > legend[-1]["y1"],
+          f"acf --svg: legend entries overlap or leave the image {legend}")
 
 
 render_fields_acf_flags()
