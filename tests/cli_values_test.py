@@ -27,7 +27,8 @@
   fields: --time against the scene's time; --at at a node against the FFT. acf: the lags of
   --length and --samples-per-period, acf(0) = 1, one period of a single cascade along x and z
   (and not along the diagonal), --seed, --lines and --area reaching the estimate; --svg's plot
-  read back: every point at its CSV value on the plot's own grid, titles centred, the legend.
+  read back: every point at its CSV value on the plot's own grid, titles centred, the legend;
+  --map: the greys of the heights (fields --at), z upwards, periodic, the gap grey.
 - bench render: --width, --height, --spp reaching the render (samples, the sea's share of a
   rolled camera's image), the slope budget's columns adding up.
 
@@ -1091,12 +1092,15 @@ def acf_plot(single, tmp):
     for name, seed in (("calm_one", 1), ("calm<two>", 2)):
         scene = json.loads(json.dumps(single))
         scene["seed"] = seed
+        scene["shading"]["interpolation"] = "direct"  # the map's heights: direct sums
         paths.append(os.path.join(tmp, name + ".json"))
         json.dump(scene, open(paths[-1], "w"))
     csv_path, svg_path = os.path.join(tmp, "plot.csv"), os.path.join(tmp, "plot.svg")
+    map_path = os.path.join(tmp, "map.png")
     r = subprocess.run([binary, "acf", *paths, "--threads", "1", "--lines", "16", "--length", "3",
                         "--samples-per-period", "4", "--area", "4", "-o", csv_path, "--svg",
-                        svg_path], capture_output=True, text=True)
+                        svg_path, "--map", map_path, "--map-pixels", "16"],
+                       capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"FAIL: oceanref acf --svg: {r.stderr}")
     rows = list(csv.DictReader(open(csv_path)))
@@ -1164,6 +1168,35 @@ def acf_plot(single, tmp):
     check(len(legend) == 2 and legend[1]["y1"] - legend[0]["y1"] >= 11 and
           float(svg.get("width")) > labels[-1][1] and float(svg.get("height")) > legend[-1]["y1"],
           f"acf --svg: legend entries overlap or leave the image {legend}")
+    # --map: the scenes' heights side by side (16 pixels over 4 x 4 periods of 64 m each, 8 grey
+    # pixels apart), grey = 1/2 + eta/(6 sigma), z upwards. The heights of the first scene at its
+    # first period's pixel centres come from `fields --at` (direct sums, as the map's scene
+    # interpolates); sigma, the map's own estimate, is fitted. The periodic ocean repeats every 4
+    # pixels.
+    image = oiio.ImageInput.open(map_path)
+    spec = image.spec()
+    grey = np.rint(image.read_image(0, 0, 0, 1, "float")[:, :, 0] * 255)
+    image.close()
+    check((spec.width, spec.height) == (40, 16), f"acf --map: {spec.width} x {spec.height}")
+    check(np.all(grey[:, 16:24] == 128), "acf --map: the gap between the maps is not grey 128")
+    left, right_map = grey[:, :16], grey[:, 24:]
+    check(np.array_equal(left, np.roll(left, 4, axis=0)) and
+          np.array_equal(left, np.roll(left, 4, axis=1)), "acf --map: not periodic over 4 pixels")
+    check(not np.array_equal(left, right_map), "acf --map: the two scenes' maps are the same")
+    eta, g = [], []
+    for row in range(4):
+        for m in range(4):
+            at = subprocess.run([binary, "fields", paths[0], "--at", f"{16 * (m + 0.5)},{16 * (row + 0.5)}"],
+                                capture_output=True, text=True)
+            eta.append(float(next(r for r in csv.DictReader(io.StringIO(at.stdout))
+                                  if r["field"] == "height")["direct"]))
+            g.append(left[15 - row, m] / 255 - 0.5)
+    eta, g = np.array(eta), np.array(g)
+    k = (g @ eta) / (eta @ eta)  # 1/(6 sigma)
+    check(k > 0 and np.all(np.abs(g) < 0.49) and np.ptp(g) > 0.2,
+          f"acf --map: greys {g * 255 + 127.5} of heights {eta}")
+    check(np.all(np.abs(255 * (g - k * eta)) <= 0.55),
+          f"acf --map: grey is not 1/2 + eta/(6 sigma) to rounding: {255 * (g - k * eta)}")
 
 
 render_fields_acf_flags()
