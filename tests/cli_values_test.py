@@ -913,6 +913,18 @@ def compare_flags():
             if rules:
                 close(rules[0]["rel"], 3 * worst_k, 1e-12, f"compare --suggest --safety 3: {name} rel")
                 close(rules[0]["floor"], 0.1, 0, f"compare --suggest --floor: {name}")
+        # The profile's derivation names up to 4 runs' candidates, in order; more, the list file.
+        for count in (4, 5):
+            listed = [cp, c2p, c2p, cp, c2p][:count]
+            open(runs, "w").write("".join(f"{x}\n" for x in listed))
+            subprocess.run([binary, "compare", "--suggest", "--list", runs, gp, "-o", suggested],
+                           check=True, capture_output=True)
+            derivation = json.load(open(suggested))["derivation"].split(";")[0]
+            named = " ".join(os.path.basename(x) for x in listed)
+            want = (f"oceanref compare --suggest over {count} run(s): " +
+                    (named if count <= 4 else f"listed in {runs}"))
+            check(derivation == want, f"compare --suggest over {count} runs: derivation "
+                                      f"{derivation!r}, expected {want!r}")
 
 
 compare_flags()
