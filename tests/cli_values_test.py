@@ -1090,6 +1090,30 @@ def render_fields_acf_flags():
                         "--area", given["--area"], *([flag, value] if flag == "--seed" else []))
             check(float(other[3]["acf"]) != float(rows[3]["acf"]), f"acf {flag} {value} changes nothing")
 
+        # The components: without choppiness there is no horizontal displacement (its columns
+        # empty) and the vector ACF is the height's; with it, the vector ACF is the
+        # variance-weighted mean of the three (between the least and the greatest); each is 1 at
+        # lag 0.
+        for chop in (0, -1.5):
+            scene = json.loads(json.dumps(single))
+            scene["waves"]["choppiness"] = chop
+            path = os.path.join(tmp, f"chop{chop}.json")
+            json.dump(scene, open(path, "w"))
+            text = subprocess.run([binary, "acf", path, "--threads", "1", "--lines", "16",
+                                   "--length", "2", "--samples-per-period", "4", "--area", "4"],
+                                  capture_output=True, text=True).stdout
+            rows = list(csv.DictReader(io.StringIO(text)))
+            parts = ("acf_disp_x", "acf_height", "acf_disp_z")
+            check(len(rows) == 9 and all(float(rows[0][c]) == 1.0 for c in parts if rows[0][c]),
+                  f"acf choppiness {chop}: the components at lag 0 {rows[:1]}")
+            for r in rows:
+                if chop == 0:
+                    check(r["acf_disp_x"] == r["acf_disp_z"] == "" and r["acf"] == r["acf_height"],
+                          f"acf without choppiness: {r}")
+                else:
+                    c = [float(r[k]) for k in parts]
+                    check(min(c) - 1e-12 <= float(r["acf"]) <= max(c) + 1e-12 and
+                          (len(set(c)) == 3 or r["tau_m"] == "0"), f"acf choppiness {chop}: {r}")
         acf_plot(single, tmp)
 
 
