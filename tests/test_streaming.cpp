@@ -95,6 +95,27 @@ TEST_CASE("a render streamed in bands writes the bytes of the whole render") {
   }
 }
 
+TEST_CASE("a streamed render's progress rises through its bands to 1") {
+  TempDir dir;
+  const Scene scene = streaming_scene("fast");  // 19 rows: bands of 7, 7 and 5
+  RenderOutputOptions options;
+  options.threads = 1;  // the callbacks in order
+  options.streamed = true;
+  options.band_rows = 7;
+  std::vector<double> shares;
+  options.progress = [&](double share) { shares.push_back(share); };
+  (void)render_scene_to_files(scene, options, dir.file("p.exr"), "");
+  REQUIRE(shares.size() >= 3);
+  CHECK(shares.front() > 0.0);
+  CHECK(std::is_sorted(shares.begin(), shares.end()));
+  CHECK(shares.back() == 1.0);
+  // The end of each band is its last row's share of the image.
+  for (const double end : {7.0 / 19.0, 14.0 / 19.0}) {
+    CAPTURE(end);
+    CHECK(std::count(shares.begin(), shares.end(), end) >= 1);
+  }
+}
+
 TEST_CASE("the memory estimate of a streamed render counts one band") {
   Scene scene = streaming_scene("fast");
   scene.image.width = 4096;
