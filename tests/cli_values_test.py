@@ -1018,7 +1018,8 @@ def render_fields_acf_flags():
         close(stages["samples_per_second"] * stages["render_total"], 12 * 8 * 9, 1e-9,
               "bench render: samples per second x render time")
         check(sum(stages[k] for k in ("synthesis", "grid", "raster", "shading")) <=
-              stages["render_total"] * (1 + 1e-9), f"bench render: stages beyond the total {stages}")
+              stages["render_total"] * (1 + 1e-9) and all(v > 0 for v in stages.values()),
+              f"bench render: a stage unmeasured or beyond the total {stages}")
         sized = os.path.join(tmp, "sized.exr")
         rolled["render"].update({"width": 12, "height": 8, "samples_per_pixel": 9})
         json.dump(rolled, open(rolled_path, "w"))

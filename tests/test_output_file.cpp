@@ -145,6 +145,41 @@ TEST_CASE("output file: the EXR writers go through it (a failed EXR write keeps 
   CHECK(dir.temporaries() == 0);
 }
 
+TEST_CASE("output file: an EXR written by rows takes no call after a failed write") {
+  const TempFolder dir;
+  ExrImage layout;
+  layout.width = 64;
+  layout.height = 64;
+  layout.channels.push_back({"R", 1, {}});
+  std::vector<std::vector<float>> band(1, std::vector<float>(64 * 32));
+  for (std::size_t i = 0; i < band[0].size(); ++i) band[0][i] = static_cast<float>(i) * 1.37f;
+  std::string message;
+  {
+    ExrRowWriter writer(dir / "rows.exr", layout);
+    const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit old_limit{};
+    REQUIRE(getrlimit(RLIMIT_FSIZE, &old_limit) == 0);
+    rlimit small = old_limit;
+    small.rlim_cur = 1024;  // below 32 rows of incompressible floats (8 KB)
+    REQUIRE(setrlimit(RLIMIT_FSIZE, &small) == 0);
+    try {
+      writer.write_rows(band, 32);
+    } catch (const std::runtime_error& e) {
+      message = e.what();
+    }
+    REQUIRE(setrlimit(RLIMIT_FSIZE, &old_limit) == 0);
+    std::signal(SIGXFSZ, old_handler);
+    CHECK(message.find("rows.exr: cannot write:") != std::string::npos);
+    // The disk has room again, but the file is broken: the next rows and finish() are refused.
+    CHECK_THROWS_WITH_AS(writer.write_rows(band, 32), doctest::Contains("after a failed write"),
+                         std::logic_error);
+    CHECK_THROWS_WITH_AS(writer.finish(), doctest::Contains("after a failed write"),
+                         std::logic_error);
+  }
+  CHECK_FALSE(fs::exists(dir / "rows.exr"));
+  CHECK(dir.temporaries() == 0);
+}
+
 TEST_CASE("output file: refuses what is not a regular file, follows links by the rule") {
   const TempFolder dir;
   // A directory, a character device, a FIFO: never replaced.
