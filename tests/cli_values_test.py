@@ -433,7 +433,6 @@ check(hazy["L_sun_incident.B"] < clear["L_sun_incident.B"], "brdf --turbidity 6 
 check(hazy["E_sky.R"] > clear["E_sky.R"], "brdf --turbidity 6 did not raise the red sky irradiance")
 
 
-
 # --- bench lighting and bench synthesis: the error tables that reference/ACCURACY.md quotes ------
 
 def bench_tables(*args):
@@ -706,16 +705,31 @@ for zenith_deg, azimuth_deg, turbidity in ((40, 0, 2.5), (70, 120, 2.5), (20, -6
     e = oceanref("sky", *args, "--irradiance")[0]
     mu = (np.arange(400) + 0.5) / 400
     phi = (np.arange(800) + 0.5) / 800 * 2 * math.pi
-    total = 0.0
+    total = np.zeros(3)
     for m in mu:
         s_theta = math.sqrt(1 - m * m)
         for p_ in phi[::8]:  # the azimuth on every 8th cell, weighted 8x: smooth in phi
-            total += preetham_xyY((s_theta * math.cos(p_), m, s_theta * math.sin(p_)), turbidity,
-                                  math.radians(zenith_deg), math.radians(azimuth_deg))["Y"] * m
+            xyY = preetham_xyY((s_theta * math.cos(p_), m, s_theta * math.sin(p_)), turbidity,
+                               math.radians(zenith_deg), math.radians(azimuth_deg))
+            total += xyz_from_xyY(xyY["x"], xyY["y"], xyY["Y"]) * m
     total *= (1 / 400) * (2 * math.pi / 100)
-    close(float(e["E_Y"]), total, 2e-3, f"sky {' '.join(args)} --irradiance: E_Y")
-# --sun: the disk's angular radius and the transmittance form.
+    where = f"sky {' '.join(args)} --irradiance"
+    for k, name in enumerate(("E_X", "E_Y", "E_Z")):
+        close(float(e[name]), total[k], 2e-3, f"{where}: {name}")
+    # Its RGB is the XYZ's; its error estimate is within the default tolerance 1e-9.
+    rgb = XYZ_TO_SRGB @ np.array([float(e["E_X"]), float(e["E_Y"]), float(e["E_Z"])])
+    for c, value in zip("RGB", rgb):
+        close(float(e[c]), value, 1e-9, f"{where}: {c}")
+    check(0 < float(e["relative_error"]) <= 1e-9, f"{where}: relative_error {e['relative_error']}")
+    # The sun: its chromaticity and RGB are those of one XYZ; below the horizon all 0.
+    s = oceanref("sky", *args, "--sun")[0]
+    sun_xyz = xyz_from_xyY(float(s["chroma_x"]), float(s["chroma_y"]), float(s["Y"]))
+    for c, value in zip("RGB", XYZ_TO_SRGB @ sun_xyz):
+        close(float(s[c]), value, 1e-9, f"sky {' '.join(args)} --sun: {c} from Y, chroma_x, chroma_y")
+# --sun: the disk's angular radius and the transmittance form; a set sun gives 0 everywhere.
 sun = oceanref("sky", "--sun-zenith-deg", "40", "--sun")[0]
+check(all(float(v) == 0 for k, v in oceanref("sky", "--sun-zenith-deg", "95", "--sun")[0].items()
+          if k != "angular_radius_rad"), "sky --sun-zenith-deg 95 --sun: the set sun is not 0")
 close(float(sun["angular_radius_rad"]), math.radians(0.2667), 2e-3, "sky --sun: angular radius")
 printed = oceanref("sky", "--sun-zenith-deg", "40", "--sun", "--printed-transmittance")[0]
 check(float(printed["Y"]) != float(sun["Y"]), "sky --printed-transmittance changes nothing")
@@ -765,6 +779,98 @@ def sky_hemisphere_image():
 
 
 sky_hemisphere_image()
+
+
+# --- brdf against sky: every row of brdf, each against what it is made of -----------------------
+# The sky and sun of `sky` at the sun's zenith and azimuth, L_sun = the disk's reflectance x the
+# incident sun, the fast errors = |fast - reference| + the reference's estimate, the real-time
+# shortcuts, the demo's F_mean fit.
+def brdf_rows():
+    args = ["--view", "0.1,0.25,1", "--sun", "0.3,0.5,-1", "--sigma2", "0.012,0.005",
+            "--wind-deg", "15", "--turbidity", "3"]
+    fast, ref = brdf(*args, "--accuracy", "fast", "--order", "4"), brdf(*args)
+    rgb_terms = ["L_sun_incident", "L_sun", "L_sky", "L_sky_filtered", "L_sky_mirror", "E_sky",
+                 "L_sea"]
+    names = ["zeta_x", "zeta_y", "p", "sigma2_view", "sigma2_sun", "Lambda_V", "Lambda_L", "F",
+             "brdf_cos", "F_mean", "F_mean_error", "F_mean_fit", "sun_reflectance",
+             "sun_reflectance_error", "evaluations", "converged"]
+    names += [f"{t}.{c}" for t in rgb_terms for c in "RGB"]
+    names += [f"{t}.{c}_error" for t in ("L_sun", "L_sky", "L_sea") for c in "RGB"]
+    for mode, got in (("fast", fast), ("reference", ref)):
+        check(sorted(got) == sorted(names), f"brdf --accuracy {mode}: rows "
+              f"{sorted(set(got) ^ set(names))} missing or unexpected")
+        check(got["converged"] == 1, f"brdf --accuracy {mode}: not converged")
+    sun = unit([0.3, 0.5, -1])
+    sky_args = ["--sun-zenith-deg", repr(math.degrees(math.acos(sun[1]))), "--sun-azimuth-deg",
+                repr(math.degrees(math.atan2(sun[2], sun[0]))), "--turbidity", "3"]
+    incident = oceanref("sky", *sky_args, "--sun")[0]
+    irradiance = oceanref("sky", *sky_args, "--irradiance")[0]
+    view, n = unit([0.1, 0.25, 1]), np.array([0.0, 1.0, 0.0])
+    mirror_sky = sky_dir(2 * float(np.dot(view, n)) * n - view, *sky_args)
+    for c in "RGB":
+        for mode, got in (("fast", fast), ("reference", ref)):
+            where = f"brdf --accuracy {mode}: "
+            close(got[f"L_sun_incident.{c}"], float(incident[c]), 1e-9, where + f"L_sun_incident.{c}")
+            close(got[f"E_sky.{c}"], float(irradiance[c]), 1e-9, where + f"E_sky.{c}")
+            close(got[f"L_sun.{c}"], got["sun_reflectance"] * got[f"L_sun_incident.{c}"], 1e-12,
+                  where + f"L_sun.{c} = sun_reflectance x L_sun_incident")
+            # L_sea = (1 - F_mean) x sea colour x E_sky / pi (Bruneton 2010 section 4.3).
+            sea = (0.0039216, 0.0156863, 0.0470588)["RGB".index(c)]
+            close(got[f"L_sea.{c}"], (1 - got["F_mean"]) * sea * got[f"E_sky.{c}"] / math.pi,
+                  1e-12, where + f"L_sea.{c}")
+            # The real-time shortcut: the sky in the mirror direction times F_mean of the same
+            # rule (the fast order, or 64 for reference, whose F_mean is nearly the converged one).
+            close(got[f"L_sky_mirror.{c}"], got["F_mean"] * float(mirror_sky[c]),
+                  1e-12 if mode == "fast" else 1e-6, where + f"L_sky_mirror.{c}")
+        close(ref[f"L_sun.{c}_error"], ref["sun_reflectance_error"] * ref[f"L_sun_incident.{c}"],
+              1e-12, f"brdf: L_sun.{c}_error = sun_reflectance_error x L_sun_incident")
+        close(ref[f"L_sea.{c}_error"], ref["F_mean_error"] *
+              (0.0039216, 0.0156863, 0.0470588)["RGB".index(c)] * ref[f"E_sky.{c}"] / math.pi,
+              1e-12, f"brdf: L_sea.{c}_error = F_mean_error x sea colour x E_sky / pi")
+        for t in ("L_sun", "L_sky", "L_sea"):
+            close(fast[f"{t}.{c}_error"],
+                  abs(fast[f"{t}.{c}"] - ref[f"{t}.{c}"]) + ref[f"{t}.{c}_error"], 1e-9,
+                  f"brdf --accuracy fast: {t}.{c}_error = |fast - reference| + its estimate")
+    for name in ("F_mean", "sun_reflectance"):
+        close(fast[name + "_error"], abs(fast[name] - ref[name]) + ref[name + "_error"], 1e-9,
+              f"brdf --accuracy fast: {name}_error = |fast - reference| + its estimate")
+    # The terms the modes share are the same numbers; the fast errors are measured by the
+    # reference's work.
+    for name in ("p", "F", "brdf_cos", "Lambda_V", "E_sky.G", "L_sun_incident.G", "F_mean_fit"):
+        check(fast[name] == ref[name], f"brdf: {name} differs between the modes")
+    check(fast["evaluations"] == ref["evaluations"] > 0, "brdf: the fast errors' evaluations")
+    # The demo's fitted mean Fresnel (src/FORMULAS.md, misprint 29), sigma_V the slope deviation
+    # along the view.
+    sigma_v = math.sqrt(fast["sigma2_view"])
+    fit = 0.02 + 0.98 * (1 - float(np.dot(view, n))) ** (5 * math.exp(-2.69 * sigma_v)) / (
+        1 + 22.7 * sigma_v ** 1.5)
+    close(fast["F_mean_fit"], fit, 1e-12, "brdf: F_mean_fit (Bruneton eq. 15)")
+    # Filtered sky: the mirror sky averaged over the facets' reflections -> the mirror's at small
+    # slopes; at larger ones it is the average of the sky over the reflected directions.
+    narrow = brdf("--view", "0.1,0.25,1", "--sun", "0.3,0.5,-1", "--sigma2", "1e-6,1e-6",
+                  "--turbidity", "3", "--accuracy", "fast")
+    for c in "RGB":
+        close(narrow[f"L_sky_filtered.{c}"], narrow[f"L_sky_mirror.{c}"], 1e-2,
+              f"brdf --sigma2 1e-6: L_sky_filtered.{c} -> L_sky_mirror")
+    order = 4
+    xs, ws = np.polynomial.hermite.hermgauss(order)
+    wind = math.radians(15)
+    tx = unit(np.array([math.cos(wind), 0.0, math.sin(wind)]))
+    ty = np.cross(n, tx)
+    total = np.zeros(3)
+    for i in range(order):
+        for j in range(order):
+            zx, zy = math.sqrt(2 * 0.012) * xs[i], math.sqrt(2 * 0.005) * xs[j]
+            m = unit(n - zx * tx - zy * ty)
+            # (below the horizon the sky is continued by its horizon limit: `sky --dir` too)
+            row = sky_dir(2 * float(np.dot(view, m)) * m - view, *sky_args)
+            total += ws[i] * ws[j] / math.pi * np.array([float(row[c]) for c in "RGB"])
+    for k, c in enumerate("RGB"):
+        close(fast[f"L_sky_filtered.{c}"], fast["F_mean"] * total[k], 1e-9,
+              f"brdf --order {order}: L_sky_filtered.{c} against the sky at the reflected facets")
+
+
+brdf_rows()
 
 
 # --- compare: every metric and threshold flag against the definitions (docs/BACKENDS.md) --------

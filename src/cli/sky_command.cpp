@@ -105,7 +105,7 @@ std::function<void(std::ostream&)> add_sky_command(CLI::App& app) {
   cmd->add_option("--turbidity", flags->turbidity, "turbidity T in [2, 10]")->capture_default_str();
   auto* dir = cmd->add_option("--dir", flags->dir,
                               "x,y,z[;x,y,z...] (+Y up) -> CSV x,y,z,Y,chroma_x,chroma_y,R,G,B "
-                              "(sky only; 0 below the horizon)");
+                              "(sky only; below the horizon, y <= 0, its horizon limit)");
   auto* sun = cmd->add_flag("--sun", flags->sun,
                             "CSV Y,chroma_x,chroma_y,R,G,B,angular_radius_rad of the sun disk");
   auto* irradiance = cmd->add_flag(

@@ -85,7 +85,7 @@ Vec3 reflected_sky_filtered(const Vec3& view, const SurfaceFrame& f, SlopeVarian
     const double vm = dot(view, m);
     Vec3 light{};
     for (std::size_t k = 0; k < 3; ++k) light[k] = 2.0 * vm * m[k] - view[k];
-    const Vec3 radiance = sky_radiance_rgb(sky, light);  // 0 below the horizon
+    const Vec3 radiance = sky_radiance_rgb(sky, light);  // its horizon limit below
     const double weight = w / std::numbers::pi;
     for (std::size_t k = 0; k < 3; ++k) sum[k] += weight * radiance[k];
   });
