@@ -306,6 +306,24 @@ for args, dispersion, depth, k_m in (
         want = float(sd["S"]) * float(sd["D"]) * slope / k
         close(float(row["Theta"]), want, 1e-9, f"spectrum {' '.join(args)} --wavevector {kx}:{kz}")
 
+# Phillips (Gamper eq. 3.73/3.74; Tessendorf): Theta(k) = A exp(-(kL)^-2 - (kl)^2) / k^4 x its
+# cos2 spreading, cos^2(theta) as printed (eq. 3.73 exactly) or normalized, cos^2(theta)/pi;
+# L = U^2/g, l = --phillips-suppression (default 0.001) x L, A = --alpha (default alpha_PM / 2).
+for extra, speed, g, suppression, amplitude, norm in (
+        ([], 12.0, G, 0.001, 0.00405, math.pi),
+        (["--phillips-suppression", "0.05"], 12.0, G, 0.05, 0.00405, math.pi),
+        (["--phillips-suppression", "0.02", "--gravity", "3.7", "--alpha", "0.01",
+          "--printed-spreading"], 7.0, 3.7, 0.02, 0.01, 1.0)):
+    args = ["--model", "phillips", "--wind-speed", repr(speed), *extra]
+    vectors = [(0.12, 0.03), (0.05, -0.09), (0.9, 0.4), (3.0, 2.5), (-0.3, 0.1)]
+    rows = oceanref("spectrum", *args, "--wavevector", ",".join(f"{x}:{z}" for x, z in vectors))
+    big_l = speed * speed / g
+    for (kx, kz), row in zip(vectors, rows):
+        k = math.hypot(kx, kz)
+        want = (amplitude * math.exp(-1 / (k * big_l) ** 2 - (k * suppression * big_l) ** 2) /
+                k ** 4 * (kx / k) ** 2 / norm)
+        close(float(row["Theta"]), want, 1e-9, f"spectrum {' '.join(args)} --wavevector {kx}:{kz}")
+
 
 # --- Moments ----------------------------------------------------------------------------------
 
@@ -1045,6 +1063,57 @@ def report(*args):
     return dict(line.split(",", 1) for line in r.stdout.splitlines() if "," in line)
 
 
+def check_relative_summary(printed, prefix, errors, values, where):
+    """A report's error summary against the layers it summarises: the relative errors e/|l| (+inf
+    for e > 0 at l = 0); the max exact (to float32's 1e-6), the quantiles the lower edges of 2^-8
+    wide bins of rank floor(q n): within 2^-7 below the order statistic (render_output.h)."""
+    e, l = errors.astype(np.float64).ravel(), np.abs(values.astype(np.float64).ravel())
+    with np.errstate(divide="ignore", invalid="ignore"):
+        relative = np.sort(np.where(l > 0, e / l, np.where(e > 0, np.inf, 0.0)))
+    close(printed[prefix + "max_relative"], relative[-1], 1e-5, f"{where}: {prefix}max_relative")
+    for key, q in (("median_relative", 0.5), ("p50_relative", 0.5), ("p99_relative", 0.99)):
+        if prefix + key not in printed:
+            continue
+        v, rank = float(printed[prefix + key]), int(q * len(relative))
+        check(relative[max(rank - 1, 0)] * (1 - 1 / 128) <= v <=
+              relative[min(rank + 1, len(relative) - 1)] * (1 + 1e-6),
+              f"{where}: {prefix}{key} {v} is not the rank-{rank} value "
+              f"{relative[rank]} of the layers")
+
+
+def render_report_lines(printed, path, plain):
+    """render's report lines: each against the EXR it wrote (layers and header) or its meaning.
+    `printed` and `path` a 4-spp fast render with --aov --lighting-error; `plain` the same
+    render without --lighting-error."""
+    layers = read_layers(path)
+    spec = oiio.ImageInput.open(path).spec()
+    where = "render --aov --lighting-error"
+    for key in ("pixel_sha256", "radiance_f64_sha256"):
+        check(printed[key] == spec.getattribute("oceanref." + key),
+              f"{where}: {key} is not the EXR's oceanref.{key}")
+    check(printed["pixel_sha256"] == plain["pixel_sha256"] and
+          printed["radiance_f64_sha256"] == plain["radiance_f64_sha256"],
+          f"{where}: the image differs from the render without --lighting-error")
+    check(printed["radiance_f64_sha256"] != printed["pixel_sha256"], f"{where}: the two hashes agree")
+    sea = layers["coverage"].ravel() > 0
+    rgb = lambda prefix: np.stack([layers[prefix + c] for c in "RGB"], axis=-1).reshape(-1, 3)
+    check_relative_summary(printed, "lighting_error_", rgb("lighting_error.")[sea],
+                           rgb("")[sea], where)
+    check_relative_summary(printed, "pixel_error_", rgb("pixel_error."), rgb(""), where)
+    # The pixel error is 3 standard errors of the mean of the 2 x 2 stratified samples, > 0.
+    check(0 < float(printed["pixel_error_p50_relative"]) <= float(printed["pixel_error_p99_relative"]),
+          f"{where}: pixel_error p50 {printed['pixel_error_p50_relative']} p99 "
+          f"{printed['pixel_error_p99_relative']}")
+    check("pixel_samples_mean" not in printed and "capped_pixels" not in printed,
+          f"{where}: samples reported for a fixed-spp render")
+    check(printed["unconverged_samples"] == "0", f"{where}: unconverged_samples")
+    # The integrand evaluations are the reference lighting's that measured the fast one's error.
+    check(int(printed["integrand_evaluations"]) > 100 * 16 * 10 * 4 * float(sea.mean()) > 0 and
+          plain["integrand_evaluations"] == "0" and "lighting_error_median_relative" not in plain,
+          f"{where}: integrand_evaluations {printed['integrand_evaluations']}, "
+          f"{plain['integrand_evaluations']} without")
+
+
 def render_fields_acf_flags():
     with tempfile.TemporaryDirectory() as tmp:
         source = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -1083,7 +1152,38 @@ def render_fields_acf_flags():
         # --lighting-error: every pixel's fast radiance within its lighting_error (+ the pixel
         # error: none, the same samples) of the reference render's.
         with_error = os.path.join(tmp, "error.exr")
-        report("render", fast, "-o", with_error, "--aov", "--lighting-error")
+        printed = report("render", fast, "-o", with_error, "--aov", "--lighting-error")
+        render_report_lines(printed, with_error, one)
+        # Adaptive sampling: the samples behind the pixels (the samples layer) and the capped ones.
+        adaptive_path = os.path.join(tmp, "adaptive.exr")
+        adaptive = report("render", scene_file("adaptive", pixel_tolerance=0.1,
+                                               max_samples_per_pixel=36),
+                          "-o", adaptive_path, "--aov")
+        per_pixel = read_layers(adaptive_path)["samples"].astype(np.float64)
+        close(adaptive["pixel_samples_mean"], per_pixel.mean(), 1e-12, "render: pixel_samples_mean")
+        close(adaptive["pixel_samples_max"], 36, 0, "render: pixel_samples_max")
+        capped = int(adaptive["capped_pixels"])
+        check(0 < capped <= int((per_pixel == 36).sum()) and per_pixel.min() == 4,
+              f"render: capped_pixels {capped} of {int((per_pixel == 36).sum())} at the cap")
+        check("antialiased_pixels" not in adaptive, "render: antialiased_pixels without antialiasing")
+        # Mastin's antialiasing: the pixels whose BT.709 luminance contrast with a neighbour in
+        # the S x S render exceeds the setting (README), +-1% for contrasts at float32's edge.
+        y = (0.2126 * pixels["R"] + 0.7152 * pixels["G"] + 0.0722 * pixels["B"]).astype(np.float64)
+        flagged = np.zeros(y.shape, bool)
+        for a, b in ((y[:, 1:], y[:, :-1]), (y[1:, :], y[:-1, :])):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                high = np.abs(a - b) > 0.1 * (a + b)
+            if a.shape[1] < y.shape[1]:
+                flagged[:, 1:] |= high
+                flagged[:, :-1] |= high
+            else:
+                flagged[1:, :] |= high
+                flagged[:-1, :] |= high
+        aa = report("render", scene_file("aa", mastin_antialiasing=0.1), "-o", out)
+        want = int(flagged.sum())
+        check(0 < want < y.size and abs(int(aa["antialiased_pixels"]) - want) <= max(1, want // 100),
+              f"render mastin_antialiasing 0.1: antialiased_pixels {aa['antialiased_pixels']}, "
+              f"{want} pixels over the contrast")
         reference = scene_file("ref")
         scene = json.load(open(reference))
         scene["shading"]["accuracy"] = "reference"
