@@ -41,6 +41,7 @@ import io
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -891,6 +892,56 @@ def brdf_rows():
 brdf_rows()
 
 
+# --- Range ends: every flag's range, as --help states it, is the one enforced ---------------------
+
+def subcommands(path=()):
+    """Every (sub)subcommand path of oceanref, from the help's "Subcommands:" lists."""
+    text = subprocess.run([binary, *path, "--help"], capture_output=True, text=True).stdout
+    names = []
+    if "Subcommands:" in text:
+        for line in text.split("Subcommands:")[1].splitlines():
+            if line.startswith("  ") and not line.startswith("   "):
+                names.append(line.split()[0])
+    return [path] + [p for n in names for p in subcommands(path + (n,))] if names else [path]
+
+
+def ranged_flags(path):
+    """(flag, kind, lo, hi) of every option whose --help shows a validator range, in order."""
+    text = subprocess.run([binary, *path, "--help"], capture_output=True, text=True).stdout
+    pattern = re.compile(r"^\s+(?:-\w,)?(--[\w-]+) (INT|FLOAT):\w+ in \[([^\],]+?)(?:, | - )([^\]]+)\]")
+    return [(m[1], m[2], m[3], m[4]) for m in map(pattern.match, text.splitlines()) if m]
+
+
+def range_ends():
+    """Just outside each end: exit 2 naming the flag. Each end itself: not refused (an unexpected
+    argument makes the run fail after every option's check, naming that argument instead)."""
+    tested = 0
+    for path in subcommands():
+        for flag, kind, lo, hi in ranged_flags(path):
+            where = f"oceanref {' '.join(path)} {flag}"
+            if kind == "INT":
+                inside, outside = [lo, hi], [str(int(lo) - 1), str(int(hi) + 1)]
+            else:
+                inside = [repr(float(lo)), repr(float(hi))]
+                outside = [repr(math.nextafter(float(lo), -math.inf)),
+                           repr(math.nextafter(float(hi), math.inf))]
+            for value in outside:  # (the sentinel stops a wrongly accepted run at once)
+                r = subprocess.run([binary, *path, f"{flag}={value}", "--range-sentinel"],
+                                   capture_output=True, text=True)
+                check(r.returncode == 2 and r.stderr.startswith(f"oceanref: {flag}: "),
+                      f"{where} {value}: outside [{lo}, {hi}] but not refused: {r.stderr.strip()}")
+            for value in inside:
+                r = subprocess.run([binary, *path, f"{flag}={value}", "--range-sentinel"],
+                                   capture_output=True, text=True)
+                check(f"oceanref: {flag}: " not in r.stderr,
+                      f"{where} {value}: the end of [{lo}, {hi}] refused: {r.stderr.strip()}")
+            tested += 1
+    check(tested >= 39, f"range ends: only {tested} ranged flags found in the help")
+
+
+range_ends()
+
+
 # --- compare: every metric and threshold flag against the definitions (docs/BACKENDS.md) --------
 
 def write_rgb(path, pixels, names=("R", "G", "B")):
@@ -1408,6 +1459,9 @@ def acf_plot(single, tmp):
     for l, t in zip(legend, labels):
         check(t[1] > l["x2"] and abs(t[2] - (l["y1"] + 4)) <= px,
               f"acf --svg: the name {t[0]} is not beside its line")
+        # A swatch: a visible stretch of the line (20 px) right of the plot, before the name.
+        check(right < l["x1"] and l["x2"] - l["x1"] >= 15,
+              f"acf --svg: the legend line of {t[0]} runs from {l['x1']} to {l['x2']}")
     check(len(legend) == 2 and legend[1]["y1"] - legend[0]["y1"] >= 11 and
           float(svg.get("width")) > labels[-1][1] and float(svg.get("height")) > legend[-1]["y1"],
           f"acf --svg: legend entries overlap or leave the image {legend}")
