@@ -7,6 +7,7 @@
 set -uo pipefail
 
 bin=${1:?usage: cli_test.sh PATH/TO/oceanref}
+source_dir=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0
@@ -48,12 +49,15 @@ for flag in --model --wind-speed --fetch --depth --spreading --swell --swell-mod
   --wavevector --moments; do
   grep -q -- "$flag" "$tmp/out" || fail "spectrum --help does not list $flag"
 done
+# docs/CLI.md is every command's --help as this binary prints it (flags, ranges, defaults).
+checks=$((checks + 1))
+python3 "$source_dir/tools/cli_reference.py" "$bin" --check 2>"$tmp/err" ||
+  fail "$(tail -1 "$tmp/err")"
 
 # --- --version names the commit the binary was built from ----------------------------------
 # In a git tree: `git rev-parse --short HEAD`, with -dirty exactly when tracked files differ from
 # it (the binary must have been built from the tree as it is now).
 expect 0 '^oceanref [0-9]+[.][0-9]+[.][0-9]+ [(]commit [0-9a-f]+(-dirty)?[)]$' --version
-source_dir=$(cd "$(dirname "$0")/.." && pwd)
 if head=$(git -C "$source_dir" rev-parse --short HEAD 2>/dev/null); then
   git -C "$source_dir" diff --quiet HEAD -- || head="$head-dirty"
   checks=$((checks + 1))
@@ -599,7 +603,7 @@ expect 2 "--profile.*unknown key 'bogus'" compare "$tmp/r2.exr" "$tmp/r1.exr" \
 # The float32 example backend, stage by stage, against oceanref's stage (`fields --stage`) with
 # the shipped per-stage profile: pass; with a bug that reaches the stage: fail (exit 1). A scene
 # and a time the profiles were not derived from.
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$source_dir
 unseen=$root/reference/scenes/golden/cos2_printed_bilinear_unpartitioned.json
 for pair in spectrum:drop-polar-jacobian h0:flip-one-phase omega:half-float-output \
   hkt:drop-conjugate-term fields:flip-one-phase; do

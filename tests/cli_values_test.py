@@ -54,6 +54,8 @@ except ImportError:
     sys.exit(77)
 
 binary = sys.argv[1]
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
+import cli_reference  # noqa: E402  (tools/cli_reference.py: every command's path and --help)
 failures = []
 checks = 0
 
@@ -894,20 +896,9 @@ brdf_rows()
 
 # --- Range ends: every flag's range, as --help states it, is the one enforced ---------------------
 
-def subcommands(path=()):
-    """Every (sub)subcommand path of oceanref, from the help's "Subcommands:" lists."""
-    text = subprocess.run([binary, *path, "--help"], capture_output=True, text=True).stdout
-    names = []
-    if "Subcommands:" in text:
-        for line in text.split("Subcommands:")[1].splitlines():
-            if line.startswith("  ") and not line.startswith("   "):
-                names.append(line.split()[0])
-    return [path] + [p for n in names for p in subcommands(path + (n,))] if names else [path]
-
-
 def ranged_flags(path):
     """(flag, kind, lo, hi) of every option whose --help shows a validator range, in order."""
-    text = subprocess.run([binary, *path, "--help"], capture_output=True, text=True).stdout
+    text = cli_reference.help_text(binary, path)
     pattern = re.compile(r"^\s+(?:-\w,)?(--[\w-]+) (INT|FLOAT):\w+ in \[([^\],]+?)(?:, | - )([^\]]+)\]")
     return [(m[1], m[2], m[3], m[4]) for m in map(pattern.match, text.splitlines()) if m]
 
@@ -916,7 +907,7 @@ def range_ends():
     """Just outside each end: exit 2 naming the flag. Each end itself: not refused (an unexpected
     argument makes the run fail after every option's check, naming that argument instead)."""
     tested = 0
-    for path in subcommands():
+    for path in cli_reference.commands(binary):
         for flag, kind, lo, hi in ranged_flags(path):
             where = f"oceanref {' '.join(path)} {flag}"
             if kind == "INT":
