@@ -36,6 +36,7 @@
 
 NumPy and OpenImageIO's Python module (tools/setup.sh); skipped (exit 77) only without them.
 """
+import base64
 import csv
 import io
 import json
@@ -966,7 +967,8 @@ def channel_metrics(g, c, a=0.0, r=0.0, floor=0.0, ulp=0):
     psnr = math.inf if rmse == 0 else -math.inf if peak == 0 else 20 * math.log10(peak / rmse)
     return {"max_rel": float(rel.max()), "max_abs": float(diff.max()), "golden_rms": rms,
             "max_ulp": int(ulps.max()), "failing": int(fails.sum()),
-            "rel_percentiles": pct + [float(rel.max())], "rmse": rmse, "psnr_db": psnr}
+            "rel_percentiles": pct + [float(rel.max())], "rmse": rmse, "psnr_db": psnr,
+            "rel_map": rel.reshape(g.shape), "fail_map": fails.reshape(g.shape)}
 
 
 def compare(*args, expect=None):
@@ -1094,6 +1096,105 @@ def compare_flags():
 
 
 compare_flags()
+
+
+def png_from_data_uri(uri, tmp):
+    """A data:image/png;base64 URI of the report, decoded by OpenImageIO: rows x columns x 3."""
+    prefix = "data:image/png;base64,"
+    check(uri.startswith(prefix), f"compare --report: not a PNG data URI: {uri[:40]}")
+    path = os.path.join(tmp, "picture.png")
+    open(path, "wb").write(base64.b64decode(uri[len(prefix):]))
+    image = oiio.ImageInput.open(path)
+    pixels = image.read_image(0, 0, 0, 3, "uint8")
+    image.close()
+    return pixels.astype(np.int64)
+
+
+def srgb_bytes(linear):  # IEC 61966-2-1 encoding, clamped, rounded to 8 bits
+    c = np.clip(linear, 0.0, 1.0)
+    encoded = np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
+    return np.rint(255 * np.clip(encoded, 0.0, 1.0)).astype(np.int64)
+
+
+def compare_report_pictures():
+    """The pictures of compare --report, decoded and checked against what they show: the colour
+    overview tone-mapped with the golden's exposure (Reinhard's global operator, key 0.18, white
+    the golden's brightest), each channel's values grey between the golden's range, the fail
+    mask red exactly where the values fail, the heat map brighter for larger errors."""
+    with tempfile.TemporaryDirectory() as tmp:
+        rng = np.random.default_rng(11)
+        g = rng.uniform(1.0, 3.0, (12, 20, 3)).astype(np.float32)  # lo well above 0
+        g[2, 3] = (40.0, 35.0, 30.0)  # a highlight sets the white point
+        c = g.copy()
+        c[..., 0] *= (1 + rng.normal(0, 3e-3, (12, 20))).astype(np.float32)
+        c[5:8, 10:14] *= np.float32(1.5)  # a region 50% brighter: beyond the golden's range
+        gp, cp = os.path.join(tmp, "g.exr"), os.path.join(tmp, "c.exr")
+        write_rgb(gp, g)
+        write_rgb(cp, c)
+        report_dir = os.path.join(tmp, "report")
+        subprocess.run([binary, "compare", cp, gp, "--rel", "2e-3", "--report", report_dir],
+                       capture_output=True)
+        html = open(os.path.join(report_dir, "index.html")).read()
+        flips = re.findall(r'<figure class="flip" data-golden="([^"]+)" data-candidate="([^"]+)"',
+                           html)
+        check(len(flips) == 4, f"compare --report: {len(flips)} flip figures, expected 1 + 3")
+        if len(flips) != 4:
+            return
+        # The colour overview: Reinhard (eq. 4) on the luminance, with the golden's log-average
+        # (delta 1e-4) and white for both pictures.
+        def luminance(x):
+            return (0.2126 * x[..., 0] + 0.7152 * x[..., 1] + 0.0722 * x[..., 2]).astype(np.float64)
+
+        y_g = luminance(g)
+        average = math.exp(float(np.mean(np.log(1e-4 + np.maximum(y_g, 0)))))
+        white = float((0.18 / average * y_g).max())
+        for k, (name, x) in enumerate((("golden", g), ("candidate", c))):
+            y = luminance(x)
+            l = 0.18 / average * y
+            scale = l * (1 + l / white ** 2) / (1 + l) / y
+            want = srgb_bytes(x.astype(np.float64) * scale[..., None])
+            got = png_from_data_uri(flips[0][k], tmp)
+            check(got.shape == want.shape and np.abs(got - want).max() <= 1,
+                  f"compare --report: the {name}'s colour overview is not its tone mapping "
+                  f"(largest byte difference {np.abs(got - want).max() if got.shape == want.shape else got.shape})")
+        sections = re.split(r'<section class="channel"', html)[1:]
+        names = [re.search(r'data-channel="([^"]+)"', s_)[1] for s_ in sections]
+        check(names == list("BGR"), f"compare --report: the channel sections {names} (EXR order)")
+        for name, section, (golden_uri, candidate_uri) in zip(names, sections, flips[1:]):
+            k = "RGB".index(name)
+            lo, hi = float(g[..., k].min()), float(g[..., k].max())
+            for side, x, uri in (("golden", g, golden_uri), ("candidate", c, candidate_uri)):
+                want = np.rint(255 * np.clip((x[..., k].astype(np.float64) - lo) / (hi - lo), 0, 1))
+                got = png_from_data_uri(uri, tmp)
+                check(got.shape[:2] == want.shape and np.abs(got[..., 0] - want).max() <= 1 and
+                      (got[..., 0] == got[..., 1]).all() and (got[..., 1] == got[..., 2]).all(),
+                      f"compare --report: {name}'s {side} values are not grey from {lo} to {hi}")
+            m = channel_metrics(g[..., k], c[..., k], r=2e-3)
+            mask = png_from_data_uri(re.search(r'<img class="mask" src="([^"]+)"', section)[1], tmp)
+            red = (mask == (230, 30, 30)).all(axis=-1)
+            check(np.array_equal(red, m["fail_map"]) and
+                  ((mask == (225, 225, 225)).all(axis=-1) | red).all(),
+                  f"compare --report: {name}'s fail mask is not red exactly where values fail")
+            heat = png_from_data_uri(re.search(r'<img class="heat" src="([^"]+)"', section)[1], tmp)
+            check(np.abs(heat - heat_colours(m["rel_map"])).max() <= 1,
+                  f"compare --report: {name}'s heat map is not the error's colour scale")
+
+
+def heat_colours(e):
+    """The report's heat colour of relative errors (docs: 1e-9 to 1 on a log scale, clamped;
+    black for 0): linear between five anchors from dark blue to pale yellow, lighter for larger."""
+    anchors = np.array([(20, 11, 82), (110, 30, 130), (200, 50, 80), (245, 140, 20),
+                        (252, 250, 170)], float)
+    with np.errstate(divide="ignore"):
+        t = np.clip((np.log10(e) + 9) / 9, 0, 1)
+    k = np.minimum(np.floor(4 * t), 3).astype(int)
+    f = (4 * t - k)[..., None]
+    colours = np.rint(anchors[k] + f * (anchors[k + 1] - anchors[k])).astype(np.int64)
+    colours[e == 0] = 0
+    return colours
+
+
+compare_report_pictures()
 
 
 # --- render, fields, acf: each flag equals the scene setting it stands for, or its definition ----
