@@ -21,9 +21,14 @@
   --irradiance against a quadrature of the sky; the hemisphere image (--size) pixel by pixel.
 - compare: every metric (max, RMS, RMSE, percentiles by nearest rank, ULP distance, failing
   count) for --abs, --rel, --floor, --ulp; --rel and --max-fail-share at their boundary;
-  --channels C=G, --profile, --json, --suggest --safety --floor --name.
+  --channels C=G, --profile, --json, --suggest --safety --floor --name; --report's pictures
+  decoded (the tone-mapped colour overview, value greys, fail mask, heat map).
+- brdf against sky: every row of brdf, each against what it is made of (the sky and sun of `sky`,
+  the fast errors' definition, the shortcuts, the F_mean fit). Every ranged flag of every
+  command at the ends its --help states.
 - render: --spp, --renderer and --threads against the scene's settings; --samples averaging to
-  the pixels; --lighting-error bounding |fast - reference|; --max-memory at the estimate.
+  the pixels; --lighting-error bounding |fast - reference|; --max-memory at the estimate; every
+  report line against the EXR written (hashes, error summaries, samples, antialiased pixels).
   fields: --time against the scene's time; --at at a node against the FFT. acf: the lags of
   --length and --samples-per-period, acf(0) = 1, one period of a single cascade along x and z
   (and not along the diagonal), --seed, --lines and --area reaching the estimate; --svg's plot
