@@ -214,6 +214,7 @@ def all_candidates(tree):
             rel = f"src/{folder}/{name}"
             text = open(os.path.join(tree, rel)).read()
             masked = mask_code(text)
+            seen = collections.Counter()  # a line repeated verbatim: its later copies get "#n"
             for op, start, old, new in sorted(candidates(text, masked),
                                               key=lambda s: (s[1], s[0], s[3])):
                 line_no = text.count("\n", 0, start) + 1
@@ -222,6 +223,9 @@ def all_candidates(tree):
                 line = text[line_start:line_end]
                 column = start - line_start
                 key = f"{rel}|{line.strip()}|{column - (len(line) - len(line.lstrip()))}|{op}|{new}"
+                seen[key] += 1
+                if seen[key] > 1:
+                    key += f"#{seen[key]}"
                 ident = hashlib.sha256(key.encode()).hexdigest()[:10]
                 by_folder[folder].append(dict(id=ident, file=rel, line=line_no, op=op, start=start,
                                               old=old, new=new, source=line.strip()))
