@@ -453,7 +453,7 @@ struct NearMidpointCase {
   const char* function;
   double x, y;
 };
-const NearMidpointCase kNearMidpointCases[] = {
+const std::vector<NearMidpointCase> kNearMidpointCases = {
 #include "math_near_midpoints.inc"
 };
 

@@ -10,8 +10,8 @@
 #                                               of reference/ACCURACY.md)
 #   tools/math_accuracy.sh --samples 20000 --max-ulp 0.5005   the quick check ctest runs
 #   tools/math_accuracy.sh --function erfc,lgamma --samples 1e5
-#   tools/math_accuracy.sh --near-midpoints 8 --samples 200000 > tests/math_near_midpoints.inc
-#                                               regenerate the near-midpoint arguments (~6 min
+#   tools/math_accuracy.sh --near-midpoints 8 --samples 200000 >nm.inc &&
+#     mv nm.inc tests/math_near_midpoints.inc   regenerate the near-midpoint arguments (~6 min
 #                                               of CPU; after a change to the argument
 #                                               distributions or a function's rounding)
 #
