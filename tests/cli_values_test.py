@@ -60,7 +60,8 @@ except ImportError:
     sys.exit(77)
 
 binary = sys.argv[1]
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
+source_root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(source_root, "tools"))
 import cli_reference  # noqa: E402  (tools/cli_reference.py: every command's path and --help)
 failures = []
 checks = 0
