@@ -10,6 +10,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -257,4 +258,31 @@ TEST_CASE("output file: a signal mid-write removes the temporary (the program's 
   CHECK(WTERMSIG(status) == SIGTERM);
   CHECK(contents(dir / "out.exr") == "old");
   CHECK(dir.temporaries() == 0);
+}
+
+TEST_CASE("output file: a committed file gives back its own signal slot, no other file's") {
+  // The handler removes the temporaries of the files being written: committing (and destroying)
+  // some files must leave the slots of the others in place. Many files in turn, then two at
+  // once, the one opened first committed; a signal must still remove the other's temporary.
+  const TempFolder dir;
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    remove_output_temporaries_on_signals();
+    for (int i = 0; i < 40; ++i) write_output_file(dir / ("done" + std::to_string(i)), "x");
+    std::optional<OutputFile> other(std::in_place, dir / "other.exr");  // slot 0
+    OutputFile writing(dir / "writing.exr");                            // slot 1
+    writing.write("half of a file");
+    other->write("a whole file");
+    other->commit();
+    other.reset();
+    std::raise(SIGTERM);
+    ::_exit(0);  // not reached
+  }
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  CHECK(WIFSIGNALED(status));
+  CHECK(dir.temporaries() == 0);
+  CHECK(contents(dir / "other.exr") == "a whole file");
+  CHECK_FALSE(fs::exists(dir / "writing.exr"));
 }
