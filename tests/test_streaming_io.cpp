@@ -534,6 +534,21 @@ TEST_CASE("read_exr_rows: any rows of any channels, as read_exr reads them") {
   }
 }
 
+TEST_CASE("read_exr_rows: one column, one row, one pixel") {
+  // The smallest images a render writes (--width 1, --height 1): nothing is an empty window.
+  const TempDir dir;
+  for (const auto& size : {std::pair{1, 5}, std::pair{6, 1}, std::pair{1, 1}}) {
+    CAPTURE(size.first);
+    CAPTURE(size.second);
+    const ExrImage image = test_image(size.first, size.second, 3);
+    const std::string path = dir.file("thin.exr");
+    write_exr(path, image);
+    const std::vector<std::vector<float>> rows = read_exr_rows(path, {"G"}, 0, size.second);
+    REQUIRE(rows.size() == 1);
+    CHECK(same_bits(rows[0], channel(image, "G").values));
+  }
+}
+
 TEST_CASE("read_exr_rows: reads only the blocks of its rows, and refuses what it cannot read") {
   const TempDir dir;
   const ExrImage image = test_image(8, 64, 17);
