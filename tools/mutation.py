@@ -172,7 +172,7 @@ def candidates(text, masked):
         if new is not None:
             add("constant", m.start(), m.group(0), new)
     for m in re.finditer(r" ([+\-*/]) (" + SIMPLE + r")(?=[);,\]}]| [+\-?:<>=!&|])", masked):
-        op, operand = m.group(1), m.group(2)
+        op = m.group(1)
         after = masked[m.end():m.end() + 3]
         if op in "+-" and re.match(r" [*/]", after):
             continue  # a + b * c: b is not the whole term
