@@ -241,3 +241,26 @@ TEST_CASE("out-of-gamut sky colours stay negative in linear sRGB (no clamping)")
   }
   CHECK(negative);
 }
+
+TEST_CASE("spectral tables: linear interpolation between the published wavelengths, 0 outside") {
+  // The absorption tables (Iqbal 1983) are read piecewise linearly: at a node its value, a
+  // quarter of the way to the next node a quarter of the step, outside the table 0.
+  for (const std::vector<SpectralPoint>* table :
+       {&kOzoneAbsorption, &kMixedGasAbsorption, &kWaterVapourAbsorption}) {
+    for (std::size_t i = 0; i < table->size(); ++i) {
+      const SpectralPoint& a = (*table)[i];
+      CHECK(interpolate(*table, a.wavelength) == doctest::Approx(a.value).epsilon(1e-14));
+      if (i + 1 == table->size()) break;
+      const SpectralPoint& b = (*table)[i + 1];
+      const double quarter = a.wavelength + 0.25 * (b.wavelength - a.wavelength);
+      CHECK(interpolate(*table, quarter) ==
+            doctest::Approx(0.75 * a.value + 0.25 * b.value).epsilon(1e-14));
+    }
+    CHECK(interpolate(*table, table->front().wavelength - 0.5) == 0.0);
+    CHECK(interpolate(*table, table->back().wavelength + 0.5) == 0.0);
+  }
+  // Two published values: the oxygen band's k_g at 765 nm (between 3.0 at 760 and 0.210 at 770)
+  // and water vapour's k_wa at 695 nm (between 0.016 and 0.024).
+  CHECK(interpolate(kMixedGasAbsorption, 765.0) == doctest::Approx(1.605).epsilon(1e-14));
+  CHECK(interpolate(kWaterVapourAbsorption, 695.0) == doctest::Approx(0.020).epsilon(1e-14));
+}
