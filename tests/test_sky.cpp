@@ -264,3 +264,23 @@ TEST_CASE("spectral tables: linear interpolation between the published wavelengt
   CHECK(interpolate(kMixedGasAbsorption, 765.0) == doctest::Approx(1.605).epsilon(1e-14));
   CHECK(interpolate(kWaterVapourAbsorption, 695.0) == doctest::Approx(0.020).epsilon(1e-14));
 }
+
+TEST_CASE("sun spectrum: the table's 380-750 nm and nothing outside it") {
+  // Preetham's solar table (Smits 1999, from Iqbal) spans 380-750 nm in 10-nm steps; the sun's
+  // spectral radiance is 0 beyond it (the observer table runs to 780 nm), not an extrapolation.
+  for (const double wavelength : {379.0, 750.5, 755.0, 770.0, 780.0}) {
+    CAPTURE(wavelength);
+    CHECK(sun_spectral_radiance(wavelength, 0.3, 2.5, TransmittanceForm::physical) == 0.0);
+  }
+  // Inside, at the table's nodes, the table (W/(m^2 sr nm), × kSolarRadianceUnit) times the
+  // transmittances, which are at most 1: positive, and below the extraterrestrial value.
+  for (const double wavelength : {380.0, 550.0, 750.0}) {
+    CAPTURE(wavelength);
+    const double extraterrestrial =
+        kSolarRadianceUnit *
+        kExtraterrestrialSolarRadiance[static_cast<std::size_t>((wavelength - 380.0) / 10.0)];
+    const double l = sun_spectral_radiance(wavelength, 0.3, 2.5, TransmittanceForm::physical);
+    CHECK(l > 0.3 * extraterrestrial);
+    CHECK(l < extraterrestrial);
+  }
+}
