@@ -180,6 +180,22 @@ TEST_CASE("Phillips: m0 = A L^2 / 2 without suppression (closed form)") {
   CHECK(relative(m0_of(s), 0.002 * L * L / 2.0) < 1e-9);
 }
 
+TEST_CASE("Unified: the peak's phase speed is U10/Omega_c, and u* follows from it") {
+  // Ω_c = U10/c_p defines the inverse wave age (Gamper §3.4): c_p = U10/Ω_c is the phase speed
+  // of the peak wavenumber k_p = g Ω_c²/U10² (deep water there: (k_p/k_m)² < 1e-6). The
+  // roughness z0 = 3.7e-5 (U10²/g)(U10/c_p)^0.9 and u* = 0.41 U10/ln(10/z0) follow.
+  for (const double u : {5.0, 10.0, 20.0}) {
+    CAPTURE(u);
+    const Spectrum s = make(SpectrumModel::unified, u, 1.0e5);
+    const UnifiedParameters& p = s.unified;
+    CHECK(p.peak_phase_speed == doctest::Approx(u / p.inverse_wave_age).epsilon(1e-14));
+    CHECK(p.peak_phase_speed ==
+          doctest::Approx(std::sqrt(kGravity / s.peak_wavenumber)).epsilon(1e-6));
+    const double z0 = 3.7e-5 * u * u / kGravity * std::pow(p.inverse_wave_age, 0.9);
+    CHECK(p.friction_velocity == doctest::Approx(0.41 * u / std::log(10.0 / z0)).epsilon(1e-12));
+  }
+}
+
 TEST_CASE("Unified: slopes agree with Cox-Munk and curvature peaks near k_m") {
   // Elfouhaily et al. 1997 built B_h to reproduce Cox & Munk's clean-surface mss
   // ≈ 0.003 + 5.12e−3 U12.5 (U12.5 ≈ 1.02 U10 for a neutral log profile); the fit has a stated
