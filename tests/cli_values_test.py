@@ -218,6 +218,11 @@ spectrum_case(["--model", "donelan", "--fetch", "30000", "--wind-speed", "8"],
 for model in ("pierson-moskowitz", "jonswap", "tma", "donelan", "unified", "phillips"):
     s0, s1 = s_of("--model", model, omega=[0.0, 0.9])
     check(s0 == 0.0 and s1 > 0.0, f"spectrum --model {model} --omega 0,0.9: S = {s0}, {s1}")
+# -0 is 0: the same S and D (the swell's tanh(omega_p/omega) is 1 there, not tanh(-inf)).
+zero = oceanref("spectrum", "--model", "jonswap", "--swell", "0.5", "--omega", "0,-0",
+                "--theta-deg", "0,30")
+check([(r["S"], r["D"]) for r in zero[:2]] == [(r["S"], r["D"]) for r in zero[2:]],
+      f"spectrum --omega -0 differs from 0: {zero}")
 refused = subprocess.run([binary, "spectrum", "--model", "jonswap", "--omega", "-0.1"],
                          capture_output=True, text=True)
 check(refused.returncode == 2 and "--omega" in refused.stderr,
