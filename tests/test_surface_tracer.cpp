@@ -358,3 +358,48 @@ TEST_CASE("surface renderer: footprint filtering changes the shading, not what t
   for (const double c : plain.image.coverage) sea += c;
   CHECK(sea > 0.25 * static_cast<double>(plain.image.coverage.size()));  // the sea is in view
 }
+
+TEST_CASE("surface tree: every leaf box holds its cell's patch, and is no larger than its bound") {
+  // A leaf's box is the cell's x0 box plus the range of q = p − x0 at the cell's own four
+  // corners widened by L·ρ (ρ ≤ the cell's longest side or diagonal/√3): it holds every point of
+  // the patch (sampled), and is no wider than the x0 box + q's range + 2L·ρ — built from another
+  // cell's corner it would still hold the patch but spread towards that corner.
+  const auto wave = [](const glm::dvec2& x0) {
+    const double phase = 0.2 * x0.x + 0.1 * x0.y;
+    return SurfacePoint{{x0.x - 3.0 * std::sin(phase), 2.0 * std::cos(phase), x0.y},
+                        {1.0 - 0.6 * std::cos(phase), -0.4 * std::sin(phase), 0.0},
+                        {-0.3 * std::cos(phase), -0.2 * std::sin(phase), 1.0}};
+  };
+  // |∇phase| = √0.05: L = (3, 2, 0)·√0.05 < (0.68, 0.45, 0); |q| ≤ (3, 2, 0).
+  const glm::dvec3 lipschitz{0.68, 0.45, 0.0};
+  const OwnedSurface s = make_surface(41, 31, 40.0, 30.0, wave, lipschitz, {3.0, 2.0, 0.0});
+  const double rho = std::sqrt(2.0) / std::sqrt(3.0) * (1.0 + 1e-9);  // 1 m cells
+  int leaves = 0;
+  for (const BoundsTree::Node& n : s.tree.nodes) {
+    if (n.children[0] >= 0) continue;
+    ++leaves;
+    const int i = n.first % 40, j = n.first / 40;
+    CAPTURE(i);
+    CAPTURE(j);
+    glm::dvec3 q_lo(1e300), q_hi(-1e300);
+    for (int a = 0; a <= 4; ++a) {
+      for (int b = 0; b <= 4; ++b) {
+        const glm::dvec2 x0{i + a / 4.0, j + b / 4.0};
+        const glm::dvec3 p = wave(x0).position;
+        for (int k = 0; k < 3; ++k) {
+          CHECK(p[k] >= n.lower[k]);
+          CHECK(p[k] <= n.upper[k]);
+        }
+        const glm::dvec3 q = p - glm::dvec3(x0.x, 0.0, x0.y);
+        q_lo = glm::min(q_lo, q);
+        q_hi = glm::max(q_hi, q);
+      }
+    }
+    const glm::dvec3 x0_extent{1.0, 0.0, 1.0};
+    for (int k = 0; k < 3; ++k) {
+      CHECK(n.upper[k] - n.lower[k] <=
+            x0_extent[k] + (q_hi[k] - q_lo[k]) + 2.0 * lipschitz[k] * rho + 1e-6);  // + the padding
+    }
+  }
+  CHECK(leaves == 40 * 30);
+}
