@@ -1121,6 +1121,10 @@ def png_from_data_uri(uri, tmp):
     return pixels.astype(np.int64)
 
 
+def luminance(rgb):  # BT.709 Y of linear sRGB, the last axis R, G, B
+    return (0.2126 * rgb[..., 0] + 0.7152 * rgb[..., 1] + 0.0722 * rgb[..., 2]).astype(np.float64)
+
+
 def srgb_bytes(linear):  # IEC 61966-2-1 encoding, clamped, rounded to 8 bits
     c = np.clip(linear, 0.0, 1.0)
     encoded = np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
@@ -1153,9 +1157,6 @@ def compare_report_pictures():
             return
         # The colour overview: Reinhard (eq. 4) on the luminance, with the golden's log-average
         # (delta 1e-4) and white for both pictures.
-        def luminance(x):
-            return (0.2126 * x[..., 0] + 0.7152 * x[..., 1] + 0.0722 * x[..., 2]).astype(np.float64)
-
         y_g = luminance(g)
         average = math.exp(float(np.mean(np.log(1e-4 + np.maximum(y_g, 0)))))
         white = float((0.18 / average * y_g).max())
@@ -1322,7 +1323,7 @@ def render_fields_acf_flags():
         check("antialiased_pixels" not in adaptive, "render: antialiased_pixels without antialiasing")
         # Mastin's antialiasing: the pixels whose BT.709 luminance contrast with a neighbour in
         # the S x S render exceeds the setting (README), +-1% for contrasts at float32's edge.
-        y = (0.2126 * pixels["R"] + 0.7152 * pixels["G"] + 0.0722 * pixels["B"]).astype(np.float64)
+        y = luminance(np.stack([pixels[c] for c in "RGB"], axis=-1))
         flagged = np.zeros(y.shape, bool)
         for a, b in ((y[:, 1:], y[:, :-1]), (y[1:, :], y[:-1, :])):
             with np.errstate(divide="ignore", invalid="ignore"):
