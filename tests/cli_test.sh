@@ -359,6 +359,28 @@ expect 0 '^frame,2$' render "$tmp/seq.json" -o "$tmp/seq_##.exr" --png "$tmp/seq
 script -qec "'$bin_path' render '$tmp/seq.json' -o '$tmp/tty_##.exr' --frames 0:2 --fps 10" /dev/null >"$tmp/tty" 2>&1
 grep -q 'frame 2 (3 of 3, t = 1.2 s, about [0-9]* s left)' "$tmp/tty" ||
   fail "render --frames: no progress with the time left: $(cat "$tmp/tty")"
+# Each frame's bar: 40 cells, the cells and the percentage the same share (floor of each), rising,
+# ending full at 100% with the time taken.
+checks=$((checks + 1))
+python3 - "$tmp/tty" <<'PY' || fail "render --frames: progress bars inconsistent: $(tr '\r' '\n' <"$tmp/tty" | grep '\]')"
+import re, sys
+bars = 0
+for line in open(sys.argv[1], encoding="utf-8", newline="").read().split("\n"):
+    drawn = re.findall(r"\r  \[([# ]{40})\] (\d+)%(  ETA (?:\d+ min )?\d+ s |  \d+ s)", line)
+    if not drawn:
+        continue
+    bars += 1
+    last = -1
+    for cells, percent, tail in drawn:
+        filled, p = cells.count("#"), int(percent)
+        assert cells == "#" * filled + " " * (40 - filled), cells
+        # share in [p/100, (p+1)/100): floor(40 share) lies in [floor(0.4 p), floor(0.4 (p+1))]
+        assert 4 * p // 10 <= filled <= 4 * (p + 1) // 10, (cells, p)
+        assert p >= last, (p, last)
+        last = p
+    assert p == 100 and filled == 40 and "ETA" not in tail, drawn[-1]
+assert bars == 3, bars
+PY
 expect 0 '^frame,2$' render "$tmp/seq.json" -o "$tmp/alone_##.exr" --png "$tmp/alone_##.png" --frames 2 --fps 10 --threads 1
 cmp -s "$tmp/seq_02.exr" "$tmp/alone_02.exr" || fail "frame 2 of a sequence differs from frame 2 alone (EXR)"
 cmp -s "$tmp/seq_02.png" "$tmp/alone_02.png" || fail "frame 2 of a sequence differs from frame 2 alone (PNG)"

@@ -1104,6 +1104,32 @@ def compare_flags():
                     (named if count <= 4 else f"listed in {runs}"))
             check(derivation == want, f"compare --suggest over {count} runs: derivation "
                                       f"{derivation!r}, expected {want!r}")
+        compare_text_table(cp, gp, g, c)
+
+
+def compare_text_table(cp, gp, g, c):
+    """The text table of compare: each row the JSON's numbers (%.3g, as printed), its worst
+    pixel the one of largest relative error (row-major first among ties) with its two values."""
+    flags = ["--rel", "2e-3", "--floor", "0.1", "--ulp", "3"]
+    got, _ = compare(cp, gp, *flags)
+    text = subprocess.run([binary, "compare", cp, gp, *flags], capture_output=True,
+                          text=True).stdout.splitlines()
+    rows = {line.split()[0]: line.split() for line in text if line.split()[:1] in (["R"], ["G"], ["B"])}
+    check(sorted(rows) == ["B", "G", "R"], f"compare text: rows {sorted(rows)}:\n{text}")
+    short = lambda v: "%.3g" % float(v)  # noqa: E731 (compare.cpp short_number)
+    for k, name in enumerate("RGB"):
+        j, row = got[name], rows.get(name, [])
+        worst = channel_metrics(g[..., k], c[..., k], r=2e-3, floor=0.1, ulp=3)["rel_map"]
+        y, x = np.unravel_index(int(np.argmax(worst)), worst.shape)
+        want = [name, j["result"].upper() if j["result"] == "fail" else j["result"],
+                short(100 * j["failing_share"]) + "%",
+                *[short(v) for v in j["rel_percentiles"]], short(j["max_abs"]),
+                short(j["golden_rms"]), str(j["max_ulp"]),
+                f"A={short(j['threshold']['abs'])}", f"R={short(j['threshold']['rel'])}",
+                f"F={short(j['threshold']['floor'])}", f"U={j['threshold']['ulp']}"]
+        if worst.max() > 0:
+            want += [f"{x},{y}", "(g", short(g[y, x, k]) + ",", "c", short(c[y, x, k]) + ")"]
+        check(row == want, f"compare text row {name}: {row}, expected {want}")
 
 
 compare_flags()

@@ -71,7 +71,12 @@ TEST_CASE("adaptive sampling: the scene's keys, their ranges and the caps of eac
     FAIL("a cap that is no refinement of the 2x2 grid was accepted");
   } catch (const SceneError& e) {
     CHECK(e.path() == "render.max_samples_per_pixel");
-    CHECK(std::string(e.what()).find("one of 36, 324, 2916, 26244") != std::string::npos);
+    // The whole message: the S x S grid it refines, the largest cap (243², the renderer's
+    // kMaxAdaptiveSamplesPerAxis squared), every valid cap and the value given.
+    CHECK(std::string(e.what()) ==
+          "render.max_samples_per_pixel: must be (S*3^r)^2 for r >= 1 refinements of the S x S "
+          "grid of render.samples_per_pixel 4 and at most 59049: one of 36, 324, 2916, 26244; "
+          "got 1024");
   }
   s["render"]["samples_per_pixel"] = 1;
   s["render"]["max_samples_per_pixel"] = 59049;  // 243², five refinements of one sample

@@ -310,3 +310,63 @@ TEST_CASE("lighting map, full sweep: the sweep reference/ACCURACY.md publishes, 
                              std::to_string(map.fresnel_cases) + " for F̄";
   CHECK(accuracy.compare(at + sweep.size(), counts.size(), counts) == 0);
 }
+
+TEST_CASE("lighting map: each case is the view, roughness and sun its sweep names") {
+  // The geometry the map's rows are about, checked from the cases themselves: each sun at its
+  // zenith angle (cos = its direction's up component) and azimuth 90°; each view at V·N = v_n,
+  // with its mirror direction 2(V·N)N − V at azimuth φ about N from the sun's side; every
+  // combination once, in the spec's order; F̄ over the first sun's cases.
+  const LightingSweepSpec spec = lighting_map_sweep(false);
+  const LightingSweep sweep = make_lighting_sweep(spec);
+  const double deg = 3.141592653589793 / 180.0;
+  REQUIRE(sweep.suns.size() == spec.suns.size());
+  for (std::size_t k = 0; k < spec.suns.size(); ++k) {
+    const LightingSun& sun = sweep.suns[k];
+    CHECK(sun.name == spec.suns[k].first);
+    const double zenith = spec.suns[k].second * deg;
+    const Vec3& d = sun.sky.sun_direction;
+    CHECK(d[1] == doctest::Approx(std::cos(zenith)).epsilon(1e-12));
+    CHECK(std::hypot(d[0], d[2]) == doctest::Approx(std::sin(zenith)).epsilon(1e-12));
+    const Vec3 east = direction_from_angles(0.5 * 3.141592653589793, 90.0 * deg);
+    CHECK(dot(d, east) == doctest::Approx(std::sin(zenith)).epsilon(1e-12));
+    CHECK(sun.sun_radiance[1] > 0.0);
+  }
+  const std::size_t per_sun =
+      spec.tilted.size() * spec.cos_view.size() * spec.azimuths_deg.size() * spec.roughness.size();
+  REQUIRE(sweep.lit.size() == per_sun * spec.suns.size());
+  REQUIRE(sweep.fresnel.size() == per_sun);
+  std::size_t i = 0;
+  for (const bool tilted : spec.tilted) {
+    for (std::size_t k = 0; k < spec.suns.size(); ++k) {
+      for (const double vn : spec.cos_view) {
+        for (const double phi : spec.azimuths_deg) {
+          for (const SlopeVariance& s : spec.roughness) {
+            const LightingCase& c = sweep.lit[i++];
+            const Vec3& n = c.frame.normal;
+            CHECK(c.sun == k);
+            CHECK(c.s.upwind == s.upwind);
+            CHECK(c.s.crosswind == s.crosswind);
+            CHECK((n[1] < 1.0) == tilted);
+            CHECK(dot(c.view, n) == doctest::Approx(vn).epsilon(1e-12));
+            // The tangential parts of the mirror direction and of the sun, about N.
+            const Vec3 mirror = combine(2.0 * vn, n, -1.0, c.view);
+            const Vec3 sun = sweep.suns[k].sky.sun_direction;
+            const Vec3 m_t = combine(1.0, mirror, -vn, n);
+            const Vec3 s_t = combine(1.0, sun, -dot(sun, n), n);
+            const double cos_phi = dot(m_t, s_t) / std::sqrt(dot(m_t, m_t) * dot(s_t, s_t));
+            CHECK(cos_phi == doctest::Approx(std::cos(phi * deg)).epsilon(1e-12).scale(1.0));
+          }
+        }
+      }
+    }
+  }
+  const std::size_t per_normal = per_sun / spec.tilted.size();  // the cases of one normal, one sun
+  for (std::size_t j = 0; j < sweep.fresnel.size(); ++j) {
+    const LightingCase& first_sun =
+        sweep.lit[j / per_normal * per_normal * spec.suns.size() + j % per_normal];
+    CHECK(sweep.fresnel[j].sun == 0);
+    CHECK(sweep.fresnel[j].view == first_sun.view);
+    CHECK(sweep.fresnel[j].frame.normal == first_sun.frame.normal);
+    CHECK(sweep.fresnel[j].s.upwind == first_sun.s.upwind);
+  }
+}

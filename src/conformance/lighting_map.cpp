@@ -78,29 +78,13 @@ SweepSpec quick_sweep() {
   return s;
 }
 
-struct SunSetting {
-  std::string name;
-  double zenith_deg;
-  Sky sky;
-  Vec3 sun_radiance;
-  Vec3 sky_floor;    // 10⁻³·E_sky/π per channel: the renderer's scale of a dark term
-  double sun_floor;  // the same for the sun's reflectance: min over channels of floor/L_sun
-};
+using SunSetting = LightingSun;
+using Case = LightingCase;
+using Sweep = LightingSweep;
 
-struct Case {
-  Vec3 view;
-  SurfaceFrame frame;
-  SlopeVariance s;
-  std::size_t sun;
-};
+}  // namespace
 
-struct Sweep {
-  std::vector<SunSetting> suns;
-  std::vector<Case> lit;      // reflected sky and sun disk: every sun
-  std::vector<Case> fresnel;  // F̄ does not depend on the sun: the views of the first sun
-};
-
-Sweep make_sweep(const SweepSpec& spec) {
+LightingSweep make_lighting_sweep(const LightingSweepSpec& spec) {
   Sweep sweep;
   for (const auto& [name, zenith] : spec.suns) {
     SunSetting sun{name, zenith, make_sky(kTurbidity, zenith * kDeg, kSunAzimuthDeg * kDeg),
@@ -146,6 +130,8 @@ Sweep make_sweep(const SweepSpec& spec) {
   }
   return sweep;
 }
+
+namespace {
 
 // ---- The integrals --------------------------------------------------------------------------
 
@@ -665,7 +651,7 @@ LightingSweepSpec lighting_map_sweep(bool quick) {
 }
 
 LightingMap measure_lighting_map(const LightingSweepSpec& spec, int threads) {
-  return measure(make_sweep(spec), spec, threads);
+  return measure(make_lighting_sweep(spec), spec, threads);
 }
 
 std::string lighting_map_csv(const LightingMap& map) {

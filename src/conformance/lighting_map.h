@@ -12,6 +12,7 @@
 
 #include "io/exr.h"
 #include "shading/ocean_brdf.h"
+#include "sky/preetham.h"
 
 namespace oceanref {
 
@@ -31,6 +32,32 @@ struct LightingSweepSpec {
 };
 // The map's sweep, or (quick) a tiny one: a smoke test, not a measurement.
 LightingSweepSpec lighting_map_sweep(bool quick);
+
+// The sweep's cases. Each sun: its zenith angle, its Preetham sky (turbidity 2.5, sun azimuth
+// 90°), the sun's radiance, and the scales below which an error counts as dark (10⁻³·E_sky/π per
+// channel; for the sun's reflectance, the least of that over L_sun). Each case: the view V at
+// V·N = v_n and azimuth φ about N from the sun's side (φ = 0: the mirror of V has the sun's
+// azimuth), the surface frame (wind angle 20°), the slope variance and the sun.
+struct LightingSun {
+  std::string name;
+  double zenith_deg;
+  Sky sky;
+  Vec3 sun_radiance;
+  Vec3 sky_floor;
+  double sun_floor;
+};
+struct LightingCase {
+  Vec3 view;
+  SurfaceFrame frame;
+  SlopeVariance s;
+  std::size_t sun;
+};
+struct LightingSweep {
+  std::vector<LightingSun> suns;
+  std::vector<LightingCase> lit;      // reflected sky and sun disk: every sun
+  std::vector<LightingCase> fresnel;  // F̄ does not depend on the sun: the first sun's cases
+};
+LightingSweep make_lighting_sweep(const LightingSweepSpec& spec);
 
 // One setting of one integral over the sweep: relative errors against the truth (reference at
 // tolerance 1e-10) and the mean time per integral; for the reference, its error estimates

@@ -14,6 +14,7 @@
 #include "core/double_double.h"
 #include "core/math.h"
 #include "core/math_kernels.h"
+#include "core/math_tables.h"
 
 namespace oceanref::math {
 namespace {
@@ -33,13 +34,7 @@ constexpr DD kLnPi = {0x1.250d048e7a1bdp+0, 0x1.7abf2ad8d5088p-57};         // l
 constexpr DD kHalfLn2Pi = {0x1.d67f1c864beb5p-1, -0x1.65b5a1b7ff5dfp-55};   // ½ ln 2π
 constexpr DD kEulerGamma = {0x1.2788cfc6fb619p-1, -0x1.6cb90701fbfabp-58};  // γ
 
-// A polynomial piece: f(centre + t) ≈ Σ c_i t^i for x in [x_min, x_max]; the first n_dd
-// coefficients are double-doubles (hi, lo), the others doubles; centre = hi + lo + lo2.
-struct Piece {
-  double x_min, x_max;
-  double centre_hi, centre_lo, centre_lo2;
-  int n_dd, degree, offset;
-};
+using tables::Piece;
 
 // clang-format off
 // BEGIN GENERATED TABLES
@@ -1072,6 +1067,23 @@ const Piece* negative_zero_piece(double x) {
 }
 
 }  // namespace
+
+namespace tables {
+std::span<const PieceTable> special_piece_tables() {
+  static constexpr PieceTable kTables[] = {
+      {"erf_small", kErfSmallPieces, kErfSmallCoefs},
+      {"erf", kErfPieces, kErfCoefs},
+      {"erfcx", kErfcxPieces, kErfcxCoefs},
+      {"lgamma", kLgammaPieces, kLgammaCoefs},
+      {"stirling", kStirlingPieces, kStirlingCoefs},
+      {"lgamma_neg_zero", kLgammaNegZeroPieces, kLgammaNegZeroCoefs},
+  };
+  return kTables;
+}
+std::span<const dd::DD> exp2_table() {
+  return kExp2Table;
+}
+}  // namespace tables
 
 // ---------------------------------------------------------------------------------------------
 

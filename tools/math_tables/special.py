@@ -4,6 +4,7 @@
 Run:  /usr/bin/python3 tools/math_tables/special.py > /tmp/special_tables.inc   (about 30 s)
 and paste the output between the "BEGIN GENERATED TABLES" / "END GENERATED TABLES" markers of
 src/core/math_special.cpp. Needs Debian's python3-mpmath. Progress goes to stderr.
+tests/math_tables_check.cpp repeats each piece's acceptance test (below) against MPFR in ctest.
 
 Every table is a list of pieces.  A piece approximates f(centre + t) for t in [t_min, t_max] by
 p(t) = c_0 + c_1 t + ... + c_n t^n, obtained by interpolation at Chebyshev nodes (near-minimax,
