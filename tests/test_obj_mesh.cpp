@@ -378,3 +378,37 @@ TEST_CASE("obj mesh: the size limits are checked before the mesh is read") {
     CHECK_THROWS_AS(load_obj(path, ObjLimits{1000, 4, std::size_t{1} << 31}), PreconditionError);
   }
 }
+
+TEST_CASE("obj mesh: the tinyobjloader cross-check names the first difference from a reading") {
+  // load_obj compares tinyobjloader's reading of the bytes with the validator's; the two agree on
+  // every file the tests load, so here the validator's side is given by hand: the true reading
+  // passes, and each kind of difference is named (a corner, a corner count, a face too many or
+  // too few, the vertex count), through positive and negative (relative) indices alike.
+  using detail::cross_check_obj_reading;
+  using detail::ObjFaceReading;
+  const std::string text = std::string(obj_unit_square) + "f 1 2 3\nf -4 -2 -1\n";
+  const std::vector<ObjFaceReading> truth = {{5, {0, 1, 2}}, {6, {0, 2, 3}}};
+  CHECK_NOTHROW(cross_check_obj_reading(text, truth, 4));
+  const auto difference = [&](const std::vector<ObjFaceReading>& reading, std::size_t vertices) {
+    try {
+      cross_check_obj_reading(text, reading, vertices);
+    } catch (const PreconditionError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no difference found");
+  };
+  const auto names = [](const std::string& message, const std::string& what) {
+    INFO(message);
+    CHECK(message.find(what) != std::string::npos);
+  };
+  names(difference({{5, {0, 1, 2}}, {6, {0, 2, 1}}}, 4),
+        "tinyobjloader read vertex index -1 on line 6, unlike the validator (corner 3)");
+  names(difference({{5, {0, 3, 2}}, {6, {0, 2, 3}}}, 4),
+        "tinyobjloader read vertex index 2 on line 5, unlike the validator (corner 2)");
+  names(difference({{5, {0, 1, 2, 3}}, {6, {0, 2, 3}}}, 4),
+        "tinyobjloader found 3 corners on line 5, the validator 4");
+  names(difference({{5, {0, 1, 2}}}, 4), "tinyobjloader found more faces than the validator");
+  names(difference({{5, {0, 1, 2}}, {6, {0, 2, 3}}, {7, {1, 2, 3}}}, 4),
+        "tinyobjloader found 2 faces, the validator 3");
+  names(difference(truth, 5), "tinyobjloader found 4 vertices, the validator 5");
+}

@@ -511,4 +511,16 @@ TriangleMesh load_obj(const std::filesystem::path& path, const ObjLimits& limits
   return mesh;
 }
 
+namespace detail {
+void cross_check_obj_reading(std::string_view text, const std::vector<ObjFaceReading>& faces,
+                             std::size_t vertices) {
+  ObjFaces reading;
+  for (const ObjFaceReading& f : faces) {
+    reading.faces.push_back({f.line, reading.corners.size(), f.corners.size()});
+    reading.corners.insert(reading.corners.end(), f.corners.begin(), f.corners.end());
+  }
+  cross_check_with_tinyobjloader(text, reading, vertices);
+}
+}  // namespace detail
+
 }  // namespace oceanref

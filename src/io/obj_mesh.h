@@ -55,6 +55,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -111,5 +112,17 @@ class ObjError : public std::runtime_error {
 // Loads every vertex and every face of the file as triangles (see above). Throws ObjError.
 TriangleMesh load_obj(const std::filesystem::path& path);
 TriangleMesh load_obj(const std::filesystem::path& path, const ObjLimits& limits);
+
+namespace detail {
+// The cross-check of load_obj, for its own tests: tinyobjloader's reading of `text` against a
+// reading given as faces (each its 1-based line and its corners' 0-based vertex indices) and a
+// vertex count. Throws PreconditionError naming the first difference.
+struct ObjFaceReading {
+  std::size_t line = 0;
+  std::vector<std::uint32_t> corners;
+};
+void cross_check_obj_reading(std::string_view text, const std::vector<ObjFaceReading>& faces,
+                             std::size_t vertices);
+}  // namespace detail
 
 }  // namespace oceanref
