@@ -570,3 +570,144 @@ TEST_CASE("a perfect mirror (sigma2 = 0) is rejected, not integrated") {
         std::invalid_argument);
   }
 }
+
+// ---- The geometry of the integrals' coordinates and breakpoints (reference_geometry) ---------
+
+namespace {
+// The facet normal of slope ζ in the convention ñ = N − ζ_x T_x − ζ_y T_y, normalised, and V
+// mirrored about it.
+Vec3 mirrored_about_slope(const SurfaceFrame& f, const Vec3& view, double zx, double zy) {
+  Vec3 n = in_frame(f, -zx, 1.0, -zy);
+  const double length = std::sqrt(dot(n, n));
+  for (double& x : n) x /= length;
+  const double vn = dot(view, n);
+  Vec3 l{};
+  for (std::size_t k = 0; k < 3; ++k) l[k] = 2.0 * vn * n[k] - view[k];
+  return l;
+}
+}  // namespace
+
+TEST_CASE("reference geometry: the sky frame's ellipse is the horizon, its peak mirrors the sun") {
+  // For views from steep to grazing, tilted and anisotropic: every point of the ellipse
+  // (u₀ + U sin θ, centre ± half-chord) is a facet that mirrors V into the horizon (L·N = 0);
+  // the circumsolar facet mirrors V into the sun; each θ of chord_scale_crossings puts an end
+  // of the chord on a scale line w ∈ {0, ±2, ±6}, and between consecutive θ of a fine grid an
+  // end crosses a line only where a returned θ lies.
+  using namespace reference_geometry;
+  const SurfaceFrame f = wind_frame(unit(0.2, 1.0, -0.3), 0.4);
+  const SlopeVariance s{0.02, 0.006};
+  const Vec3 sun = polar(f, 1.1, 2.0);
+  for (const double theta_v : {0.3, 1.0, 1.45, 1.56}) {
+    for (const double phi_v : {0.0, 1.0, 4.0}) {
+      const Vec3 view = polar(f, theta_v, phi_v);
+      CAPTURE(theta_v);
+      CAPTURE(phi_v);
+      const SkyFrame k = sky_frame(view, f, s);
+      for (int i = -10; i <= 10; ++i) {
+        const double theta = 0.157 * i;
+        const math::SinCos angle{std::sin(theta), std::cos(theta)};
+        const auto [centre, half] = sky_frame_chord(k, angle);
+        for (const double end : {centre - half, centre + half}) {
+          const std::array<double, 2> zeta = sky_frame_slope(k, k.u0 + k.extent * angle.sin, end);
+          const Vec3 l = mirrored_about_slope(f, view, zeta[0], zeta[1]);
+          CHECK(std::fabs(dot(l, f.normal)) < 1e-12);
+        }
+      }
+      const std::array<double, 2> peak = circumsolar_facet(k, view, f, sun);
+      const std::array<double, 2> zeta = sky_frame_slope(k, peak[0], peak[1]);
+      const Vec3 l = mirrored_about_slope(f, view, zeta[0], zeta[1]);
+      for (std::size_t c = 0; c < 3; ++c) CHECK(l[c] == doctest::Approx(sun[c]).epsilon(1e-12));
+      const Vec3 below = polar(f, 1.8, 2.0);  // the sun under the surface's plane: no peak
+      CHECK(circumsolar_facet(k, view, f, below) == std::array<double, 2>{0.0, 0.0});
+      // Crossings over all of (−π/2, π/2).
+      const std::vector<double> crossings = chord_scale_crossings(k, -kPi / 2, kPi / 2);
+      const auto ends = [&](double theta) {
+        const auto [centre, half] = sky_frame_chord(k, {std::sin(theta), std::cos(theta)});
+        return std::array<double, 2>{centre - half, centre + half};
+      };
+      for (const double theta : crossings) {
+        const std::array<double, 2> e = ends(theta);
+        double nearest = HUGE_VAL;
+        for (const double w : {-6.0, -2.0, 0.0, 2.0, 6.0}) {
+          for (const double x : e) nearest = std::fmin(nearest, std::fabs(x - w));
+        }
+        CHECK(nearest < 1e-12 * k.radius);
+      }
+      // (The tips θ = ±π/2, where the chord shrinks to a point, are left out: a scale line
+      // through a tip is touched there, not crossed.)
+      const int steps = 20000;
+      const double first = -kPi / 2 + 1e-6, step = (kPi - 2e-6) / steps;
+      for (int j = 0; j < steps; ++j) {
+        const double a = first + step * j, b = a + step;
+        for (std::size_t side = 0; side < 2; ++side) {
+          for (const double w : {-6.0, -2.0, 0.0, 2.0, 6.0}) {
+            if ((ends(a)[side] - w) * (ends(b)[side] - w) >= 0.0) continue;
+            bool found = false;
+            for (const double theta : crossings) found = found || (theta >= a && theta <= b);
+            CHECK_MESSAGE(found, "no crossing of w = " << w << " in [" << a << ", " << b << "]");
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("reference geometry: a view along the normal has the horizon's ellipse centred") {
+  // t₀ = 0 exactly: n̂ is T_x by convention (no direction from t₀ to the origin), and the
+  // horizon is the circle |ζ| = 1 (a facet at 45° mirrors V into the surface's plane).
+  using namespace reference_geometry;
+  const SurfaceFrame f = wind_frame(unit(0.0, 1.0, 0.0), 0.7);
+  const SlopeVariance s{0.02, 0.006};
+  const SkyFrame k = sky_frame(f.normal, f, s);
+  CHECK(k.nx == 1.0);
+  CHECK(k.ny == 0.0);
+  CHECK(k.u0 == 0.0);
+  for (const double theta : {-1.2, 0.0, 0.5}) {
+    const auto [centre, half] = sky_frame_chord(k, {std::sin(theta), std::cos(theta)});
+    const std::array<double, 2> zeta =
+        sky_frame_slope(k, k.extent * std::sin(theta), centre + half);
+    const Vec3 l = mirrored_about_slope(f, f.normal, zeta[0], zeta[1]);
+    CHECK(std::fabs(dot(l, f.normal)) < 1e-12);
+  }
+}
+
+TEST_CASE("reference geometry: the sun disk's points and its horizon line") {
+  // sun_disk_direction: a unit vector at angle ρ_s r from the sun towards x u + y w, with
+  // dω/(dx dy) = (sin ρ/ρ) ρ_s²; on the line x (u·N) + y (w·N) = sun_disk_horizon the direction
+  // lies in the surface's plane to O(ρ²) (L·N = (S·N)(cos ρ − sin ρ/ρ)), for a sun setting
+  // across the tilted surface's horizon.
+  using namespace reference_geometry;
+  const double radius = 0.00465;
+  const SurfaceFrame f = wind_frame(unit(0.2, 1.0, -0.3), 0.4);
+  const Vec3 sun =
+      polar(f, kPi / 2 - 0.5 * radius, 1.0);  // S·N = sin(ρ/2): the disk's centre above
+  const std::array<Vec3, 2> axes = sun_disk_axes(sun);
+  for (const auto& [x, y] : std::vector<std::array<double, 2>>{
+           {0.0, 0.0}, {1.0, 0.0}, {0.0, -1.0}, {0.6, 0.3}, {-0.2, 0.9}}) {
+    double density = 0.0;
+    const Vec3 l = sun_disk_direction(sun, radius, axes, x, y, density);
+    const double r = std::hypot(x, y);
+    CHECK(dot(l, l) == doctest::Approx(1.0).epsilon(1e-15));
+    CHECK(std::acos(std::fmin(1.0, dot(l, sun))) == doctest::Approx(radius * r).epsilon(1e-6));
+    if (r > 0.0) {  // towards x u + y w
+      CHECK(std::fabs(dot(l, axes[0]) * y - dot(l, axes[1]) * x) < 1e-15);
+      CHECK(dot(l, axes[0]) * x + dot(l, axes[1]) * y > 0.0);
+    }
+    const double rho = radius * r;
+    CHECK(density ==
+          doctest::Approx((r > 0.0 ? std::sin(rho) / rho : 1.0) * radius * radius).epsilon(1e-15));
+  }
+  const double h = sun_disk_horizon(sun, radius, f);
+  const double un = dot(axes[0], f.normal), wn = dot(axes[1], f.normal);
+  CHECK(std::fabs(h) < std::hypot(un, wn));  // the horizon crosses the disk
+  for (const double t : {-0.8, -0.3, 0.0, 0.4, 0.7}) {
+    // The point of the line at parameter t along it, inside the disk.
+    const double norm2 = un * un + wn * wn;
+    const double x = h * un / norm2 - t * wn / std::sqrt(norm2);
+    const double y = h * wn / norm2 + t * un / std::sqrt(norm2);
+    if (std::hypot(x, y) > 1.0) continue;
+    double density = 0.0;
+    const Vec3 l = sun_disk_direction(sun, radius, axes, x, y, density);
+    CHECK(std::fabs(dot(l, f.normal)) < radius * radius);
+  }
+}

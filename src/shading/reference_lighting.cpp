@@ -92,6 +92,98 @@ void require_roughness(SlopeVariance s) {
 }
 }  // namespace
 
+namespace reference_geometry {
+
+// The horizon L·N = 0 in ζ is the circle of centre −v_t/v_n and radius R = 1/v_n; in t an
+// ellipse of centre t₀. n̂ points from t₀ towards the origin, which puts the boundary nearest to
+// the Gaussian's mass across u. |S t − c|² = (Δu, Δw)ᵀ [[a, b], [b, c]] (Δu, Δw) < R²,
+// S = diag(s_x, s_y); its u-extent is u₀ ± U, U = R √c/(s_x s_y) (ac − b² = s_x² s_y²).
+SkyFrame sky_frame(const Vec3& view, const SurfaceFrame& f, SlopeVariance s) {
+  SkyFrame k{};
+  const double vn = dot(view, f.normal);
+  k.sx = std::sqrt(2.0 * s.upwind);
+  k.sy = std::sqrt(2.0 * s.crosswind);
+  const double t0x = -dot(view, f.tangent_x) / (vn * k.sx);
+  const double t0y = -dot(view, f.tangent_y) / (vn * k.sy);
+  const double t0 = std::sqrt(t0x * t0x + t0y * t0y);
+  k.nx = t0 > 0.0 ? -t0x / t0 : 1.0;
+  k.ny = t0 > 0.0 ? -t0y / t0 : 0.0;
+  k.radius = 1.0 / vn;
+  k.b = k.nx * k.ny * (k.sy * k.sy - k.sx * k.sx);
+  k.c = k.sx * k.sx * k.ny * k.ny + k.sy * k.sy * k.nx * k.nx;
+  k.extent = k.radius * std::sqrt(k.c) / (k.sx * k.sy);
+  k.u0 = -t0;
+  return k;
+}
+
+std::array<double, 2> sky_frame_slope(const SkyFrame& k, double u, double w) {
+  return {k.sx * (u * k.nx - w * k.ny), k.sy * (u * k.ny + w * k.nx)};
+}
+
+// With Δu = U sin θ the chord in w is centred at −b U sin θ/c with half-length R cos θ/√c.
+std::array<double, 2> sky_frame_chord(const SkyFrame& k, const math::SinCos& angle) {
+  return {-k.b * k.extent * angle.sin / k.c, k.radius * angle.cos / std::sqrt(k.c)};
+}
+
+// The facet that mirrors V into the sun: the circumsolar peak (a cusp of the Perez γ-term). Its
+// normal is h = V + S, and in the convention ñ = N − ζ_x T_x − ζ_y T_y (reflected_sky_per_slope)
+// its slope is ζ = −h_t/h_n.
+std::array<double, 2> circumsolar_facet(const SkyFrame& k, const Vec3& view, const SurfaceFrame& f,
+                                        const Vec3& sun) {
+  Vec3 h{};
+  for (std::size_t i = 0; i < 3; ++i) h[i] = view[i] + sun[i];
+  const double hn = dot(h, f.normal);
+  const bool sun_peak = dot(sun, f.normal) > 0.0 && hn > 0.0;
+  const double tsx = sun_peak ? -dot(h, f.tangent_x) / hn / k.sx : 0.0;
+  const double tsy = sun_peak ? -dot(h, f.tangent_y) / hn / k.sy : 0.0;
+  return {tsx * k.nx + tsy * k.ny, -tsx * k.ny + tsy * k.nx};
+}
+
+// Centre ± half-chord = w is A sin θ + B cos θ = w with A = −b U/c, B = ±R/√c.
+std::vector<double> chord_scale_crossings(const SkyFrame& k, double theta_lo, double theta_hi) {
+  std::vector<double> crossings;
+  for (const double side : {-1.0, 1.0}) {
+    const double a_coef = -k.b * k.extent / k.c;
+    const double b_coef = side * k.radius / std::sqrt(k.c);
+    const double m = math::hypot(a_coef, b_coef);
+    const double phase = math::atan2(b_coef, a_coef);
+    for (const double w : {-kT, -2.0, 0.0, 2.0, kT}) {
+      if (!(std::fabs(w) < m)) continue;
+      const double base = math::asin(w / m);
+      for (const double theta : {base - phase, kPi - base - phase, base - phase + 2.0 * kPi,
+                                 kPi - base - phase - 2.0 * kPi}) {
+        if (theta > theta_lo && theta < theta_hi) crossings.push_back(theta);
+      }
+    }
+  }
+  return crossings;
+}
+
+// To first order in ρ_s, L·N = cos ρ (S·N) + ρ_s (x u·N + y w·N) vanishes on this line.
+double sun_disk_horizon(const Vec3& sun, double sun_radius, const SurfaceFrame& f) {
+  return -dot(sun, f.normal) / sun_radius;
+}
+
+// A point (x, y) of the unit disk is the direction at angle ρ = ρ_s r (r = |(x, y)|) from the
+// sun towards u x + w y: L = cos ρ S + (sin ρ/r)(x u + y w), dω = (sin ρ/ρ) ρ_s² dx dy.
+Vec3 sun_disk_direction(const Vec3& sun, double sun_radius, const std::array<Vec3, 2>& axes,
+                        double x, double y, double& solid_angle_density) {
+  const double r = std::sqrt(x * x + y * y);
+  const double rho = sun_radius * r;
+  const math::SinCos a = math::sincos(rho);
+  const double sinc = r > 0.0 ? a.sin / rho : 1.0;
+  solid_angle_density = sinc * sun_radius * sun_radius;
+  Vec3 l{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    l[i] = a.cos * sun[i] + sinc * sun_radius * (x * axes[0][i] + y * axes[1][i]);
+  }
+  return l;
+}
+
+}  // namespace reference_geometry
+
+using namespace reference_geometry;
+
 ScalarEstimate mean_fresnel_reference(const Vec3& view, const SurfaceFrame& f, SlopeVariance s,
                                       const BrdfOptions& options, double relative) {
   require_roughness(s);
@@ -143,62 +235,20 @@ RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& f, Slo
   require_roughness(s);
   const ViewTerms v = view_terms(view, f, s, options.erfc);
   if (!(v.cos_theta > 0.0)) return {};
-  const double vn = v.cos_theta;
-  const double sx = std::sqrt(2.0 * s.upwind);
-  const double sy = std::sqrt(2.0 * s.crosswind);
-  // The horizon: in ζ the circle of centre −v_t/v_n and radius R = 1/v_n; in t an ellipse of
-  // centre t₀. The frame u = n̂·t, w = n̂⊥·t with n̂ from t₀ towards the origin puts the
-  // boundary nearest to the Gaussian's mass across u, so most chords in w span the Gaussian.
-  const double t0x = -dot(view, f.tangent_x) / (vn * sx);
-  const double t0y = -dot(view, f.tangent_y) / (vn * sy);
-  const double t0 = std::sqrt(t0x * t0x + t0y * t0y);
-  const double nx = t0 > 0.0 ? -t0x / t0 : 1.0;
-  const double ny = t0 > 0.0 ? -t0y / t0 : 0.0;
-  // |S t − c|² = (Δu, Δw)ᵀ [[a, b], [b, c]] (Δu, Δw) < R², S = diag(s_x, s_y); its u-extent is
-  // u₀ ± U, U = R √c/(s_x s_y) (ac − b² = s_x² s_y²); with Δu = U sin θ the chord in w is
-  // centred at −b U sin θ/c with half-length R cos θ/√c, and du = U cos θ dθ.
-  const double radius = 1.0 / vn;
-  const double b = nx * ny * (sy * sy - sx * sx);
-  const double c = sx * sx * ny * ny + sy * sy * nx * nx;
-  const double extent = radius * std::sqrt(c) / (sx * sy);
-  const double u0 = -t0;
-  // The facet that mirrors V into the sun: the circumsolar peak (a cusp of the Perez γ-term).
-  // Its normal is h = V + S, and in this integral's convention (ñ = N − ζ_x T_x − ζ_y T_y, as
-  // reflected_sky_per_slope) its slope is ζ = −h_t/h_n.
-  Vec3 h{};
-  for (std::size_t k = 0; k < 3; ++k) h[k] = view[k] + sky.sun_direction[k];
-  const double hn = dot(h, f.normal);
-  const bool sun_peak = dot(sky.sun_direction, f.normal) > 0.0 && hn > 0.0;
-  const double tsx = sun_peak ? -dot(h, f.tangent_x) / hn / sx : 0.0;
-  const double tsy = sun_peak ? -dot(h, f.tangent_y) / hn / sy : 0.0;
-  const double u_sun = tsx * nx + tsy * ny;
-  const double w_sun = -tsx * ny + tsy * nx;
+  const SkyFrame k = sky_frame(view, f, s);
+  const std::array<double, 2> sun_facet = circumsolar_facet(k, view, f, sky.sun_direction);
   std::vector<double> theta_breaks;
-  for (const double u : breakpoints_in(-kT, kT, {u_sun})) {
-    theta_breaks.push_back(math::asin(clamp_unit((u - u0) / extent)));
+  for (const double u : breakpoints_in(-kT, kT, {sun_facet[0]})) {
+    theta_breaks.push_back(math::asin(clamp_unit((u - k.u0) / k.extent)));
   }
   // Where the chord's ends cross the Gaussian's scale lines w ∈ {0, ±2, ±kT}: there the inner
   // integral turns from the whole line to a cut one, steeply when the horizon is far (a grazing
   // view: the chord shrinks from ~R to 0 over a small range of θ). Without these breakpoints a
   // Kronrod rule can straddle that turn with G7 and K15 agreeing on a wrong value (the map
-  // found estimates 2× too small at v_n = 0.01). Centre ± half-chord = w is
-  // A sin θ + B cos θ = w with A = −b U/c, B = ±R/√c.
-  const double theta_lo = theta_breaks.front();
-  const double theta_hi = theta_breaks.back();
-  for (const double side : {-1.0, 1.0}) {
-    const double a_coef = -b * extent / c;
-    const double b_coef = side * radius / std::sqrt(c);
-    const double m = math::hypot(a_coef, b_coef);
-    const double phase = math::atan2(b_coef, a_coef);
-    for (const double w : {-kT, -2.0, 0.0, 2.0, kT}) {
-      if (!(std::fabs(w) < m)) continue;
-      const double base = math::asin(w / m);
-      for (const double theta : {base - phase, kPi - base - phase, base - phase + 2.0 * kPi,
-                                 kPi - base - phase - 2.0 * kPi}) {
-        if (theta > theta_lo && theta < theta_hi) theta_breaks.push_back(theta);
-      }
-    }
-  }
+  // found estimates 2× too small at v_n = 0.01).
+  const std::vector<double> crossings =
+      chord_scale_crossings(k, theta_breaks.front(), theta_breaks.back());
+  theta_breaks.insert(theta_breaks.end(), crossings.begin(), crossings.end());
   std::sort(theta_breaks.begin(), theta_breaks.end());
   const CubatureTolerance<3> outer{relative, absolute};
   const CubatureTolerance<3> inner =
@@ -207,15 +257,14 @@ RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& f, Slo
   const Estimate<3> r = integrate_adaptive<3>(
       [&](double theta) {
         const math::SinCos angle = math::sincos(theta);
-        const double u = u0 + extent * angle.sin;
-        const double centre = -b * extent * angle.sin / c;
-        const double half_chord = radius * angle.cos / std::sqrt(c);
+        const double u = k.u0 + k.extent * angle.sin;
+        const auto [centre, half_chord] = sky_frame_chord(k, angle);
         // dt = U cos θ dθ dw; p dζ = e^{−|t|²}/π dt.
-        const double g = extent * angle.cos / kPi * math::exp(-u * u);
+        const double g = k.extent * angle.cos / kPi * math::exp(-u * u);
         const auto per_slope = [&](double w) {
           Estimate<3> e;
-          e.value = reflected_sky_per_slope(sx * (u * nx - w * ny), sy * (u * ny + w * nx), view, v,
-                                            f, s, sky, options);
+          const std::array<double, 2> zeta = sky_frame_slope(k, u, w);
+          e.value = reflected_sky_per_slope(zeta[0], zeta[1], view, v, f, s, sky, options);
           for (double& x : e.value) x *= g;
           return e;
         };
@@ -232,7 +281,7 @@ RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& f, Slo
               for (double& x : e.value) x *= gaussian;
               return e;
             },
-            breakpoints_in(lo, hi, {w_sun}), inner);
+            breakpoints_in(lo, hi, {sun_facet[1]}), inner);
       },
       theta_breaks, outer);
   return {r.value, r.error, r.evaluations, r.converged};
@@ -275,18 +324,6 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
   const Vec3& w = axes[1];
   // A point (x, y) of the unit disk is the direction at angle ρ = ρ_s r (r = |(x, y)|) from the
   // sun towards u x + w y: L = cos ρ S + (sin ρ/r)(x u + y w), dω = (sin ρ/ρ) ρ_s² dx dy.
-  const auto direction = [&](double x, double y, double& solid_angle_density) {
-    const double r = std::sqrt(x * x + y * y);
-    const double rho = radius * r;
-    const math::SinCos a = math::sincos(rho);
-    const double sinc = r > 0.0 ? a.sin / rho : 1.0;
-    solid_angle_density = sinc * radius * radius;
-    Vec3 l{};
-    for (std::size_t k = 0; k < 3; ++k) {
-      l[k] = a.cos * sun[k] + sinc * radius * (x * u[k] + y * w[k]);
-    }
-    return l;
-  };
   // The specular direction 2(V·N)N − V, where the lobe peaks, or the disk point nearest to it.
   Vec3 mirror{};
   for (std::size_t k = 0; k < 3; ++k) mirror[k] = 2.0 * v.cos_theta * f.normal[k] - view[k];
@@ -329,7 +366,7 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
   // of the outer rule when it runs along y.
   const double un = dot(u, f.normal);
   const double wn = dot(w, f.normal);
-  const double horizon = -dot(sun, f.normal) / radius;
+  const double horizon = sun_disk_horizon(sun, radius, f);
   const bool horizon_across_x = std::fabs(wn) >= std::fabs(un);
   if (!horizon_across_x && std::fabs(horizon) < std::fabs(un)) {
     theta_breaks.push_back(math::asin(horizon / un));
@@ -352,7 +389,8 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
             [&](double eta) {
               Estimate<1> e;
               double solid_angle_density = 0.0;
-              const Vec3 l = direction(angle.sin, eta * angle.cos, solid_angle_density);
+              const Vec3 l = sun_disk_direction(sun, radius, axes, angle.sin, eta * angle.cos,
+                                                solid_angle_density);
               e.value[0] = angle.cos * angle.cos * solid_angle_density *
                            ocean_brdf(l, view, v, f, s, options).brdf_cos;
               return e;

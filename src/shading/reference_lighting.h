@@ -19,6 +19,10 @@
 // accepted tolerance.
 #pragma once
 
+#include <array>
+#include <vector>
+
+#include "core/math.h"
 #include "shading/ocean_brdf.h"
 #include "sky/preetham.h"
 
@@ -69,5 +73,36 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double sun_radius, const
 // H_S·N ≤ ρ (no bound of this form); 0 when V is below the surface.
 double reflected_sun_bound(const Vec3& sun, double sun_radius, const Vec3& view,
                            const SurfaceFrame& frame, SlopeVariance s);
+
+// The geometry behind the integrals' coordinates and breakpoints, one function per piece, so
+// that each is tested against what it stands for (tests/test_reference_lighting.cpp).
+namespace reference_geometry {
+// The reflected sky's coordinates: ζ = (s_x t_x, s_y t_y), s = √(2σ²), and t = u n̂ + w n̂⊥ with
+// n̂ from the centre t₀ of the horizon's ellipse towards the origin; the ellipse is
+// u = u₀ + U sin θ, w = centre(θ) ± half-chord(θ), θ ∈ [−π/2, π/2]. Requires V·N > 0.
+struct SkyFrame {
+  double sx, sy;        // √(2σ_x²), √(2σ_y²)
+  double nx, ny;        // n̂ in t
+  double u0, extent;    // u₀ = −|t₀|, U
+  double b, c, radius;  // the ellipse's form (b, c of [[a, b], [b, c]]) and R = 1/v_n
+};
+SkyFrame sky_frame(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s);
+// ζ at (u, w).
+std::array<double, 2> sky_frame_slope(const SkyFrame& k, double u, double w);
+// The horizon ellipse's chord at θ (angle = sin θ, cos θ): its centre and half-length in w.
+std::array<double, 2> sky_frame_chord(const SkyFrame& k, const math::SinCos& angle);
+// (u, w) of the facet that mirrors V into the sun (the circumsolar peak, a breakpoint of both
+// rules); (0, 0) when the sun or that facet is below the surface's plane.
+std::array<double, 2> circumsolar_facet(const SkyFrame& k, const Vec3& view,
+                                        const SurfaceFrame& frame, const Vec3& sun);
+// The θ in (θ_lo, θ_hi) where an end of the chord crosses w ∈ {0, ±2, ±kSlopeTruncation}.
+std::vector<double> chord_scale_crossings(const SkyFrame& k, double theta_lo, double theta_hi);
+// The sun disk as the unit disk (x, y) (reflected_sun_reference, axes from sun_disk_axes): the
+// direction of a point, with dω/(dx dy); and the surface's horizon L·N = 0, to first order in
+// ρ the line x (u·N) + y (w·N) = sun_disk_horizon.
+Vec3 sun_disk_direction(const Vec3& sun, double sun_radius, const std::array<Vec3, 2>& axes,
+                        double x, double y, double& solid_angle_density);
+double sun_disk_horizon(const Vec3& sun, double sun_radius, const SurfaceFrame& frame);
+}  // namespace reference_geometry
 
 }  // namespace oceanref
