@@ -31,6 +31,42 @@ TEST_CASE(
   CHECK(z == doctest::Approx(y).epsilon(2e-3));
 }
 
+TEST_CASE("CIE 1931 observer table: the shapes of the published functions, row by row") {
+  // What the published 1931 functions look like at every 5-nm row, from 380 to 780 nm: ȳ (the
+  // photopic luminosity V(λ)) rises strictly to exactly 1 at 555 nm and falls strictly after; z̄
+  // rises strictly to its peak at 445 nm, never rises after, and is 0 from 650 nm on; x̄ and ȳ
+  // are positive everywhere. A transposed or mistyped entry breaks one of these (the sums above
+  // move by far less than their rounding).
+  REQUIRE(kCie1931Observer.size() == 81);
+  std::size_t peak_y = 0, peak_z = 0;
+  for (std::size_t i = 0; i < 81; ++i) {
+    const ColorMatchingSample& c = kCie1931Observer[i];
+    CHECK(c.wavelength == 380.0 + 5.0 * static_cast<double>(i));
+    CHECK(c.x > 0.0);
+    CHECK(c.y > 0.0);
+    if (c.y > kCie1931Observer[peak_y].y) peak_y = i;
+    if (c.z > kCie1931Observer[peak_z].z) peak_z = i;
+    CHECK((c.z == 0.0) == (c.wavelength >= 650.0));
+  }
+  CHECK(kCie1931Observer[peak_y].wavelength == 555.0);
+  CHECK(kCie1931Observer[peak_y].y == 1.0);
+  CHECK(kCie1931Observer[peak_z].wavelength == 445.0);
+  for (std::size_t i = 0; i + 1 < 81; ++i) {
+    const ColorMatchingSample &a = kCie1931Observer[i], &b = kCie1931Observer[i + 1];
+    CAPTURE(a.wavelength);
+    CHECK((i < peak_y ? b.y > a.y : b.y < a.y));
+    CHECK((i < peak_z ? b.z > a.z : b.z <= a.z));
+  }
+  // x̄: two lobes; rising to the blue peak at 440 nm, falling to the dip at 505 nm (0.0024),
+  // rising to the main peak at 600 nm, falling after.
+  for (std::size_t i = 0; i + 1 < 81; ++i) {
+    const ColorMatchingSample &a = kCie1931Observer[i], &b = kCie1931Observer[i + 1];
+    const bool rising = a.wavelength < 440.0 || (a.wavelength >= 505.0 && a.wavelength < 600.0);
+    CAPTURE(a.wavelength);
+    CHECK((rising ? b.x > a.x : b.x < a.x));
+  }
+}
+
 TEST_CASE("sRGB: the derived matrix maps D65 to (1, 1, 1) and matches IEC 61966-2-1") {
   const Matrix3 m = xyz_to_linear_srgb_matrix();
   const Vec3 white = xyz_to_linear_srgb(xyY_to_XYZ(0.3127, 0.3290, 1.0));
