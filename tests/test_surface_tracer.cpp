@@ -403,3 +403,29 @@ TEST_CASE("surface tree: every leaf box holds its cell's patch, and is no larger
   }
   CHECK(leaves == 40 * 30);
 }
+
+TEST_CASE("surface tracer: where Newton's method fails, the triangle's hit is kept, unrefined") {
+  // A flat sea whose derivatives are given as zero: Newton's system is singular everywhere, so
+  // every hit is the small patch's triangle hit (exact on a plane) with `refined` false — over
+  // both triangles of the cells, (p00, p10, p01) and (p10, p11, p01).
+  const auto singular = [](const glm::dvec2& x0) {
+    return SurfacePoint{{x0.x, 0.0, x0.y}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  };
+  const OwnedSurface s = make_surface(5, 4, 6.0, 6.0, singular, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0});
+  SurfaceTraceSettings settings;
+  settings.forward = {0.0, -1.0, 0.0};
+  int lower = 0, upper = 0;  // hits in each triangle of their cell (by the cell's fractions)
+  for (int n = 0; n < 40; ++n) {
+    const double x = 0.07 + 0.149 * n, z = 0.11 + 0.1447 * n;
+    const SurfaceHit hit = trace_surface(s.view, s.tree, settings, {x, 5.0, z}, {0.0, -1.0, 0.0});
+    REQUIRE(hit.hit);
+    CAPTURE(n);
+    CHECK_FALSE(hit.refined);
+    CHECK(hit.x0.x == doctest::Approx(x).epsilon(1e-12));
+    CHECK(hit.x0.y == doctest::Approx(z).epsilon(1e-12));
+    const double fs = x / 1.5 - std::floor(x / 1.5), ft = z / 2.0 - std::floor(z / 2.0);
+    (fs + ft < 1.0 ? lower : upper) += 1;
+  }
+  CHECK(lower > 5);
+  CHECK(upper > 5);
+}
