@@ -7,9 +7,11 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "conformance/channel_name.h"
 #include "conformance/compare.h"
@@ -412,28 +414,40 @@ TEST_CASE(
 }
 
 TEST_CASE("float32 backend: its draws and stages against oceanref's, entry by entry") {
-  const Scene scene =
-      load_scene(std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/backend_example.json");
-  const Ocean ocean = realize_ocean(scene.waves, 1);
-  const std::vector<Float32Cascade> f32 = float32_cascades(scene.waves);
-  REQUIRE(f32.size() == 1);
-  const PatternSpectrum& d = ocean.cascades[0].high;
-  const Float32Pattern& p = f32[0].high;
-  REQUIRE(p.h0.size() == d.h0.size());
-  double peak = 0.0;
-  for (const Complex& z : d.h0) peak = std::max(peak, std::fabs(z.re) + std::fabs(z.im));
-  int drawn = 0;
-  for (std::size_t i = 0; i < d.h0.size(); ++i) {
-    // The same entries drawn; each h0 within 1e-5 of the largest (float32 rounding of Θ, the
-    // uniforms and Box-Muller: a few 1e-7 relative, larger where the spectrum's exponentials
-    // amplify the rounding of their arguments).
-    CHECK((p.h0[i].re != 0.0f) == (d.h0[i].re != 0.0));
-    CHECK(std::fabs(double(p.h0[i].re) - d.h0[i].re) < 1e-5 * peak);
-    CHECK(std::fabs(double(p.h0[i].im) - d.h0[i].im) < 1e-5 * peak);
-    CHECK(std::fabs(double(p.omega[i]) - d.omega[i]) <= 4e-7 * d.omega[i]);
-    drawn += d.h0[i].re != 0.0 ? 1 : 0;
+  // The shipped example, and the same with each cos-2s spreading of the backend plus a swell
+  // (Lutz eq. 29: s + 16 tanh(ω_p/ω) swell²), so that every branch of its spreading is compared.
+  const std::string example =
+      std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/backend_example.json";
+  std::vector<Scene> scenes{load_scene(example)};
+  for (const char* model : {"mitsuyasu", "hasselmann", "mastin", "gamper"}) {
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(example));
+    j["waves"]["spreading"] = {{"model", model}, {"swell", 0.7}};
+    scenes.push_back(parse_scene(j));
   }
-  CHECK(drawn > 100);
+  for (std::size_t n = 0; n < scenes.size(); ++n) {
+    const Scene& scene = scenes[n];
+    CAPTURE(n);
+    const Ocean ocean = realize_ocean(scene.waves, 1);
+    const std::vector<Float32Cascade> f32 = float32_cascades(scene.waves);
+    REQUIRE(f32.size() == 1);
+    const PatternSpectrum& d = ocean.cascades[0].high;
+    const Float32Pattern& p = f32[0].high;
+    REQUIRE(p.h0.size() == d.h0.size());
+    double peak = 0.0;
+    for (const Complex& z : d.h0) peak = std::max(peak, std::fabs(z.re) + std::fabs(z.im));
+    int drawn = 0;
+    for (std::size_t i = 0; i < d.h0.size(); ++i) {
+      // The same entries drawn; each h0 within 1e-5 of the largest (float32 rounding of Θ, the
+      // uniforms and Box-Muller: a few 1e-7 relative, larger where the spectrum's exponentials
+      // amplify the rounding of their arguments).
+      CHECK((p.h0[i].re != 0.0f) == (d.h0[i].re != 0.0));
+      CHECK(std::fabs(double(p.h0[i].re) - d.h0[i].re) < 1e-5 * peak);
+      CHECK(std::fabs(double(p.h0[i].im) - d.h0[i].im) < 1e-5 * peak);
+      CHECK(std::fabs(double(p.omega[i]) - d.omega[i]) <= 4e-7 * d.omega[i]);
+      drawn += d.h0[i].re != 0.0 ? 1 : 0;
+    }
+    CHECK(drawn > 100);
+  }
 }
 
 TEST_CASE("fields output: a foam sequence's channels are the accumulated foam, not the indicator") {
