@@ -366,29 +366,57 @@ double cos_2s_spread(const Spectrum& s, double omega) {
   return spread + horvath_swell_spread(omega, s.peak_frequency, s.swell);
 }
 
-// D(ω, k, θ) for the wave direction θ (absolute, radians); ω and k belong together.
-double directional_spreading(const Spectrum& s, double omega, double k, double theta) {
-  const double t = wrap_angle(theta - s.wind_direction);
+SpreadingAt spreading_at(const Spectrum& s, double omega, double k) {
+  SpreadingAt d;
+  d.spectrum = &s;
   const double ratio = omega / s.peak_frequency;
+  switch (s.spreading) {
+    case SpreadingModel::cos2:
+    case SpreadingModel::cos4:
+      break;
+    case SpreadingModel::donelan:
+      d.parameter = donelan_beta(ratio);
+      break;
+    case SpreadingModel::donelan_banner:
+      d.parameter = donelan_banner_beta(ratio);
+      break;
+    case SpreadingModel::unified:
+      d.parameter = unified_upwind_ratio(unified_phase_speed(s, k), s.unified.peak_phase_speed,
+                                         s.unified.min_phase_speed, s.unified.friction_velocity);
+      break;
+    default:
+      d.parameter = cos_2s_spread(s, omega);
+      d.log_normalization = cos_2s_log_normalization(d.parameter);
+  }
+  return d;
+}
+
+// D(ω, k, θ) for the wave direction θ (absolute, radians), from spreading_at(s, ω, k).
+double directional_spreading(const SpreadingAt& d, double theta) {
+  const Spectrum& s = *d.spectrum;
+  const double t = wrap_angle(theta - s.wind_direction);
   switch (s.spreading) {
     case SpreadingModel::cos2:
       return cosine_power_spreading(t, 2.0) / (s.printed_spreading ? 1.0 : kPi);
     case SpreadingModel::cos4:
       return cosine_power_spreading(t, 4.0) / (s.printed_spreading ? 1.0 : 0.75 * kPi);
     case SpreadingModel::donelan:
-      return s.printed_spreading ? donelan_spreading(t, donelan_beta(ratio))
-                                 : sech2_spreading(t, donelan_beta(ratio));
+      return s.printed_spreading ? donelan_spreading(t, d.parameter)
+                                 : sech2_spreading(t, d.parameter);
     case SpreadingModel::donelan_banner:
-      return sech2_spreading(t, donelan_banner_beta(ratio));
+      return sech2_spreading(t, d.parameter);
     case SpreadingModel::unified:
-      return unified_spreading(
-          t, unified_upwind_ratio(unified_phase_speed(s, k), s.unified.peak_phase_speed,
-                                  s.unified.min_phase_speed, s.unified.friction_velocity));
+      return unified_spreading(t, d.parameter);
     default: {
-      const double d = cos_2s_spreading(t, cos_2s_spread(s, omega));
-      return s.spread_blend == 1.0 ? d : spread_blend(t, d, s.spread_blend);
+      const double value = cos_2s_spreading(t, d.parameter, d.log_normalization);
+      return s.spread_blend == 1.0 ? value : spread_blend(t, value, s.spread_blend);
     }
   }
+}
+
+// D(ω, k, θ) for the wave direction θ (absolute, radians); ω and k belong together.
+double directional_spreading(const Spectrum& s, double omega, double k, double theta) {
+  return directional_spreading(spreading_at(s, omega, k), theta);
 }
 
 double spreading_at_frequency(const Spectrum& s, double omega, double theta) {

@@ -137,6 +137,16 @@ Spectrum make_spectrum(const SpectrumSettings& settings);
 double frequency_spectrum(const Spectrum& s, double omega);
 double wavenumber_spectrum(const Spectrum& s, double k);
 double directional_spreading(const Spectrum& s, double omega, double k, double theta);
+// D(ω, k, θ) for many θ at one (ω, k): what does not depend on θ (the cos-2s spread s(ω) and
+// ln Q(s), the sech² β(ω/ω_p), the Unified upwind ratio) computed once. The spreading's value
+// at θ is directional_spreading(s, ω, k, θ)'s, bit for bit.
+struct SpreadingAt {
+  const Spectrum* spectrum = nullptr;
+  double parameter = 0.0;          // s, β or the upwind ratio, by the spreading model
+  double log_normalization = 0.0;  // ln Q(s) of the cos-2s family
+};
+SpreadingAt spreading_at(const Spectrum& s, double omega, double k);
+double directional_spreading(const SpreadingAt& d, double theta);
 double spreading_at_frequency(const Spectrum& s, double omega, double theta);
 double spreading_at_wavenumber(const Spectrum& s, double k, double theta);
 double wavevector_spectrum(const Spectrum& s, double kx, double kz);

@@ -43,9 +43,9 @@ QuadratureResult integrate_over_direction(const Spectrum& s, double k,
   const double phi = s.wind_direction;
   // Integrate over θ' = θ − φ ∈ [−π, π], split at the peak and at ±π/2.
   const std::vector<double> b{-kPi, -0.5 * kPi, 0.0, 0.5 * kPi, kPi};
-  return integrate(
-      [&](double t) { return weight(t + phi) * spreading_at_wavenumber(s, k, t + phi); }, b,
-      tolerance);
+  const SpreadingAt d = spreading_at(s, angular_frequency(s.dispersion, k), k);
+  return integrate([&](double t) { return weight(t + phi) * directional_spreading(d, t + phi); }, b,
+                   tolerance);
 }
 
 QuadratureResult zeroth_moment(const Spectrum& s, double k_max,

@@ -23,11 +23,15 @@ double wrap_angle(double theta) {
   return std::remainder(theta, 2.0 * kPi);
 }
 
-// Q(s) = 2^{2s−1}/π · Γ²(s+1)/Γ(2s+1), in logarithms (lgamma) so large s cannot overflow
-// (Gamper eq. 3.57; Alimardanov eq. 2.20; Mastin eq. 6 with N_p = 1/Q).
+// ln Q(s) = (2s−1) ln 2 − ln π + 2 ln Γ(s+1) − ln Γ(2s+1): Q in logarithms (lgamma) so large s
+// cannot overflow (Gamper eq. 3.57; Alimardanov eq. 2.20; Mastin eq. 6 with N_p = 1/Q).
+double cos_2s_log_normalization(double s) {
+  return (2.0 * s - 1.0) * kLn2 - kLnPi + 2.0 * math::lgamma(s + 1.0) - math::lgamma(2.0 * s + 1.0);
+}
+
+// Q(s) = 2^{2s−1}/π · Γ²(s+1)/Γ(2s+1)  (Gamper eq. 3.57).
 double cos_2s_normalization(double s) {
-  return math::exp((2.0 * s - 1.0) * kLn2 - kLnPi + 2.0 * math::lgamma(s + 1.0) -
-                   math::lgamma(2.0 * s + 1.0));
+  return math::exp(cos_2s_log_normalization(s));
 }
 
 // |cos(θ/2)| for any θ: cos(θ/2) towards the wind; behind it (|θ| > π/2, θ wrapped to
@@ -42,13 +46,17 @@ double half_angle_cosine(double theta) {
 }
 
 // D = Q(s) |cos(θ/2)|^{2s}, evaluated as exp(ln Q + 2s ln|cos(θ/2)|)  (Gamper eq. 3.57;
-// Alimardanov eq. 2.19; Lutz eq. 27–28; Mastin eq. 4).
-double cos_2s_spreading(double theta, double s) {
+// Alimardanov eq. 2.19; Lutz eq. 27–28; Mastin eq. 4), ln Q = cos_2s_log_normalization(s)
+// computed once for many θ.
+double cos_2s_spreading(double theta, double s, double log_normalization) {
+  if (s == 0.0) return math::exp(log_normalization);
   const double c = half_angle_cosine(theta);
-  if (s == 0.0) return cos_2s_normalization(0.0);
   if (c == 0.0) return 0.0;
-  return math::exp((2.0 * s - 1.0) * kLn2 - kLnPi + 2.0 * math::lgamma(s + 1.0) -
-                   math::lgamma(2.0 * s + 1.0) + 2.0 * s * math::log(c));
+  return math::exp(log_normalization + 2.0 * s * math::log(c));
+}
+
+double cos_2s_spreading(double theta, double s) {
+  return cos_2s_spreading(theta, s, cos_2s_log_normalization(s));
 }
 
 // s_p = 11.5 (ω_p U/g)^−2.5  (Alimardanov eq. 2.22).

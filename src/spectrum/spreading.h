@@ -10,8 +10,11 @@ double wrap_angle(double theta);
 // --- The cosine-2s family: D = Q(s) |cos(θ/2)|^{2s} ---------------------------------------
 // |cos(θ/2)|, exactly 0 at θ = ±fl(π) (the angle atan2 gives a wavevector opposite the wind).
 double half_angle_cosine(double theta);
+double cos_2s_log_normalization(double s);
 double cos_2s_normalization(double s);
 double cos_2s_spreading(double theta, double s);
+// The same D with ln Q(s) = cos_2s_log_normalization(s) given (computed once for many θ).
+double cos_2s_spreading(double theta, double s, double log_normalization);
 double mitsuyasu_peak_spread(double omega_p, double wind_speed, double g);
 double mitsuyasu_spread(double omega, double omega_p, double peak_spread);
 double hasselmann_spread(double omega, double omega_p, double wind_speed, double g);

@@ -60,8 +60,9 @@ double gerstner_direction_integral(const Spectrum& s, double k, double theta0, d
                                    const QuadratureTolerance& tolerance, int i, int j) {
   const double phi = s.wind_direction;
   const std::vector<double> inner{phi - kPi, phi - 0.5 * kPi, phi, phi + 0.5 * kPi, phi + kPi};
+  const SpreadingAt d = spreading_at(s, angular_frequency(s.dispersion, k), k);
   const QuadratureResult r =
-      integrate([&](double theta) { return spreading_at_wavenumber(s, k, theta); },
+      integrate([&](double theta) { return directional_spreading(d, theta); },
                 gerstner_breakpoints(theta0, theta1, inner), tolerance);
   if (!r.converged) {
     throw std::runtime_error("draw_gerstner_waves: the directional integral of cell (" +
