@@ -114,6 +114,18 @@ TEST_CASE("lighting map plot: every point where its time and error put it, label
   REQUIRE(dots.size() == 12);  // in the map's order: per integral, fast, then reference
   REQUIRE(bars.size() == 12);
   REQUIRE(lines.size() == 6);  // one per integral and mode, through its dots
+  // Three panels of one size side by side, evenly spaced, apart and inside the picture.
+  std::smatch picture;
+  REQUIRE(std::regex_search(svg, picture, std::regex(R"re(<svg [^>]*width="([\d.]+)")re")));
+  const double picture_width = std::stod(picture[1].str());
+  for (std::size_t p = 1; p < 3; ++p) {
+    CAPTURE(p);
+    for (const std::size_t k : {1u, 2u, 3u}) CHECK(panels[p][k] == panels[0][k]);
+    CHECK(panels[p][0] - panels[p - 1][0] == doctest::Approx(panels[1][0] - panels[0][0]));
+    CHECK(panels[p][0] > panels[p - 1][0] + panels[p - 1][2]);
+  }
+  CHECK(panels[0][0] > 0.0);
+  CHECK(panels[2][0] + panels[2][2] < picture_width);
   // The axes are shared: x = a + b·log10(t) within a panel, y = c − d·log10(e), d > 0, the same
   // in every panel. Fitted on two dots, checked on all.
   const auto log_error = [](double e) { return std::log10(std::max(e, 1e-17)); };
@@ -285,6 +297,55 @@ TEST_CASE("study: FFT grids equal direct summation at the nodes; interpolation e
     CHECK(std::fabs(identity_error) < 1e-12);
   }
   CHECK(rows == 12);
+}
+
+TEST_CASE(
+    "lighting map markdown: the cost table only when every integral's defaults were measured") {
+  // The table sets the reference at the default tolerance against the fast mode at the default
+  // orders (ShadingSettings), per integral; a map without one of those rows (a sweep of other
+  // orders or tolerances) has no such table, and writing it must not fail.
+  const ShadingSettings defaults;
+  const LightingIntegral integrals[] = {LightingIntegral::sky, LightingIntegral::fresnel,
+                                        LightingIntegral::sun};
+  // Times at the unit boundaries: 1 ms and 1 s are written in those units.
+  const double kScale[] = {1e-3, 1.0, 1e-6};
+  const auto markdown_without = [&](int missing, bool missing_fast) {
+    LightingMap map;
+    for (int i = 0; i < 3; ++i) {
+      for (const bool fast : {true, false}) {
+        if (i == missing && fast == missing_fast) continue;
+        LightingMapRow r;
+        r.integral = integrals[i];
+        r.fast = fast;
+        r.setting = !fast                                 ? defaults.tolerance
+                    : r.integral == LightingIntegral::sun ? defaults.sun_order
+                                                          : defaults.sky_order;
+        r.label = fast ? "order" : "tolerance";
+        r.cases = 4;
+        r.seconds = (fast ? 1.0 : 3.0) * kScale[i];
+        r.median = r.p95 = r.max = fast ? 1e-3 : 1e-7;
+        map.rows.push_back(r);
+      }
+    }
+    return lighting_map_markdown(map);
+  };
+  const std::string title = "**Cost and error: reference at tolerance";
+  const std::string whole = markdown_without(-1, false);
+  const std::size_t table = whole.find(title);
+  REQUIRE(table != std::string::npos);
+  // Each integral's row: fast time, reference time (3x), their ratio.
+  CHECK(whole.find("| 1 ms | 3 ms | 3 |", table) != std::string::npos);
+  CHECK(whole.find("| 1 s | 3 s | 3 |", table) != std::string::npos);
+  CHECK(whole.find("| 1 µs | 3 µs | 3 |", table) != std::string::npos);
+  for (int i = 0; i < 3; ++i) {
+    for (const bool fast : {true, false}) {
+      CAPTURE(i);
+      CAPTURE(fast);
+      std::string without;
+      REQUIRE_NOTHROW(without = markdown_without(i, fast));
+      CHECK(without.find(title) == std::string::npos);
+    }
+  }
 }
 
 TEST_CASE("lighting map, full sweep: the sweep reference/ACCURACY.md publishes, case for case") {
