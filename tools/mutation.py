@@ -3,19 +3,30 @@
 wrong?
 
     python3 tools/mutation.py [--seed S] [--per-folder K] [--folders a,b] [--jobs J]
-                              [--work DIR] [--report FILE] [--list]
+                              [--work DIR] [--report FILE] [--list] [--mutants ID,...]
+                              [--uncovered] [--from-results]
 
 One small semantic change (a mutant) at a time is made in a clone of HEAD's tree (WORK/tree; the
 working tree is never touched, uncommitted changes are not tested), the clone's build (WORK/build,
-Release, gcc, _GLIBCXX_ASSERTIONS: an index off the end aborts) is rebuilt incrementally, and the unit and CLI tests run WITHOUT the golden hashes:
-every ctest entry except `golden`, with OCEANREF_TESTS_NO_GOLDENS=1 (the test cases and Python
-tests that compare with reference/golden/manifest.json skip those comparisons). The unit tests
-run as shards of ~10 doctest cases; the first failing shard or script kills the mutant (a
-timeout, 3x the job's baseline time + 60 s, or a crash counts as a failure) and the others are
-stopped (the scripts stop at their first failure: OCEANREF_TESTS_FAIL_FAST=1). A mutant
-survives when every job passes. At the end, every job that killed a mutant runs again on the
-unmutated tree: if one fails (the machine changed during the run), the run is invalid and no
-report is written.
+Release, gcc, _GLIBCXX_ASSERTIONS: an index off the end aborts) is rebuilt incrementally, and
+the unit and CLI tests run WITHOUT the golden hashes: every ctest entry except `golden`, with
+OCEANREF_TESTS_NO_GOLDENS=1 (the test cases and Python tests that compare with
+reference/golden/manifest.json skip those comparisons). Each doctest case is a job of its own,
+as is every other ctest entry; the first failing job kills the mutant (a timeout, 3x the job's
+baseline time + 60 s, or a crash counts as a failure) and the others are stopped (the scripts
+stop at their first failure: OCEANREF_TESTS_FAIL_FAST=1). A mutant survives when every job it
+runs passes. At the end, every job that killed a mutant runs again on the unmutated tree: if one
+fails (the machine changed during the run), the run is invalid and no report is written.
+
+Only the jobs that execute the mutated line run: a job that never executes it cannot see the
+change. The baseline runs every job once in a coverage build of the same tree (WORK/coverage/
+build: the same flags plus --coverage; each job on a CPU of its own, its counters written under
+WORK/coverage/data/JOB) and reads with gcov the src/ lines each executed. GCC counts before it
+optimises, so the counts are the source's. Every job runs when coverage cannot tell: the line
+has no code of its own (a table, a constant), lies in a constexpr function (the compiler may
+evaluate it), or no job executes it (it may run only in a process ended by a signal, which
+writes no counters). The baseline and coverage are kept in WORK/coverage.json and reused by
+later runs on the same commit.
 
 Mutation operators (on the code of src/*/*.cpp; comments, strings and preprocessor lines are
 never changed):
@@ -45,6 +56,7 @@ time. The run's details go to WORK/results.json.
 """
 import argparse
 import collections
+import concurrent.futures
 import hashlib
 import json
 import os
@@ -59,7 +71,6 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FOLDERS = ["cli", "conformance", "core", "io", "raster", "scene", "shading", "sky", "spectrum",
            "trace", "waves"]
-SHARD_SIZE = 10  # doctest cases per unit-test job
 
 
 # --- Candidate sites ----------------------------------------------------------------------------
@@ -259,6 +270,12 @@ def run(cmd, **kw):
     return subprocess.run(cmd, check=True, **kw)
 
 
+def configure(tree, build, flags):
+    run(["cmake", "-S", tree, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+         f"-DCMAKE_CXX_FLAGS={flags}", f"-DOCEANREF_KISSFFT_DIR={ROOT}/build/_deps/kissfft-src"],
+        stdout=subprocess.DEVNULL)
+
+
 def prepare(work):
     """WORK/tree: a clone of HEAD; WORK/build: its Release build."""
     tree, build = os.path.join(work, "tree"), os.path.join(work, "build")
@@ -273,9 +290,7 @@ def prepare(work):
         stdout=subprocess.DEVNULL)
     # _GLIBCXX_ASSERTIONS: an index off the end of a std::array or std::vector aborts (a
     # mutant's off-by-one loop bound would otherwise write past the array unnoticed).
-    run(["cmake", "-S", tree, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
-         "-DCMAKE_CXX_FLAGS=-D_GLIBCXX_ASSERTIONS",
-         f"-DOCEANREF_KISSFFT_DIR={ROOT}/build/_deps/kissfft-src"], stdout=subprocess.DEVNULL)
+    configure(tree, build, "-D_GLIBCXX_ASSERTIONS")
     return tree, build, head
 
 
@@ -295,41 +310,43 @@ def object_files(build, rel):
 
 
 def test_jobs(build):
-    """The unit and CLI tests as jobs: doctest shards and every other ctest entry but golden."""
+    """The unit and CLI tests as jobs: each doctest case, and every other ctest entry but golden
+    (each job's "dir" names its scratch and coverage directories)."""
     listing = json.loads(subprocess.check_output(
         ["ctest", "--test-dir", build, "--show-only=json-v1"], text=True))
     jobs = []
     unit = os.path.join(build, "tests", "oceanref_tests")
     names = subprocess.check_output([unit, "--list-test-cases", "--order-by=name",
                                      "--no-intro", "--no-version"], text=True)
-    count = sum(1 for line in names.splitlines() if line and not line.startswith(("[doctest]",
-                                                                                 "=====")))
-    for first in range(1, count + 1, SHARD_SIZE):
-        last = min(count, first + SHARD_SIZE - 1)
-        jobs.append(dict(name=f"unit[{first}-{last}]", cwd=build, env={}, skip=None,
-                         cmd=[unit, "--order-by=name", f"--first={first}", f"--last={last}",
-                              "--abort-after=1", "--no-intro", "--no-version"]))
+    cases = [line for line in names.splitlines() if line and not line.startswith(("[doctest]",
+                                                                                 "====="))]
+    for index, case in enumerate(cases, 1):
+        jobs.append(dict(name=f"unit '{case}'", dir=f"unit{index:03d}", cwd=build, env={},
+                         skip=None, cmd=[unit, "--order-by=name", f"--first={index}",
+                                         f"--last={index}", "--no-intro", "--no-version"]))
     for test in listing["tests"]:
         if test["name"] == "golden" or test["command"][0] == unit:
             continue
         props = {p["name"]: p["value"] for p in test.get("properties", [])}
         env = dict(e.split("=", 1) for e in props.get("ENVIRONMENT", []))
-        jobs.append(dict(name=test["name"], cmd=test["command"], env=env,
+        jobs.append(dict(name=test["name"], dir=re.sub(r"\W", "_", test["name"]),
+                         cmd=test["command"], env=env,
                          cwd=props.get("WORKING_DIRECTORY", build),
                          skip=props.get("SKIP_RETURN_CODE")))
     return jobs
 
 
-def start_job(job, work, timeout):
-    tmp = os.path.join(work, "tmp", re.sub(r"\W", "_", job["name"]))
+def start_job(job, work, timeout, cpu=None):
+    tmp = os.path.join(work, "tmp", job["dir"])
     shutil.rmtree(tmp, ignore_errors=True)
     os.makedirs(tmp)
     env = dict(os.environ, TMPDIR=tmp, OCEANREF_TESTS_NO_GOLDENS="1", OCEANREF_TESTS_FAIL_FAST="1",
                **job["env"])
     log = open(tmp + ".log", "w")
+    pin = None if cpu is None else (lambda: os.sched_setaffinity(0, {cpu}))
     proc = subprocess.Popen(job["cmd"], cwd=job["cwd"], env=env, stdout=log,
-                            stderr=subprocess.STDOUT, start_new_session=True)
-    return dict(proc=proc, job=job, start=time.time(), timeout=timeout, log=log)
+                            stderr=subprocess.STDOUT, start_new_session=True, preexec_fn=pin)
+    return dict(proc=proc, job=job, start=time.time(), timeout=timeout, log=log, cpu=cpu)
 
 
 def stop(running):
@@ -342,14 +359,18 @@ def stop(running):
         r["log"].close()
 
 
-def run_tests(jobs, work, parallel, timeouts):
-    """Runs the jobs (in the given order) `parallel` at a time; returns (failed job name or None,
-    reason, {job: seconds}, {job: exit code}) — stops at the first failure."""
+def run_tests(jobs, work, parallel, timeouts, pin=False):
+    """Runs the jobs (in the given order) `parallel` at a time, each on a CPU of its own if `pin`;
+    returns (failed job name or None, reason, {job: seconds}, {job: exit code}) — stops at the
+    first failure."""
     pending, running, seconds, codes = list(jobs), [], {}, {}
+    cpus = sorted(os.sched_getaffinity(0))
     while pending or running:
         while pending and len(running) < parallel:
             job = pending.pop(0)
-            running.append(start_job(job, work, timeouts.get(job["name"], 600)))
+            busy = collections.Counter(r["cpu"] for r in running)
+            cpu = min(cpus, key=lambda c: busy[c]) if pin else None
+            running.append(start_job(job, work, timeouts.get(job["name"], 600), cpu))
         time.sleep(0.05)
         for r in list(running):
             code = r["proc"].poll()
@@ -368,6 +389,132 @@ def run_tests(jobs, work, parallel, timeouts):
                 stop(running)
                 return r["job"]["name"], f"exit {code}", seconds, codes
     return None, "", seconds, codes
+
+
+# --- Coverage: which jobs execute a mutant's line ----------------------------------------------
+
+def compile_time_lines(text):
+    """The lines of the constexpr and consteval function bodies (and constexpr lambdas) of one
+    file: code the compiler may evaluate while compiling, which no coverage counter sees."""
+    masked = mask_code(text)
+    lines = set()
+    for m in re.finditer(r"\b(?:constexpr|consteval)\b(?!\s*\()", masked):
+        brace = masked.find("{", m.end())
+        if not re.fullmatch(r"[^;]*\)\s*(?:(?:const|noexcept|->\s*[\w:<>, ]+)\s*)*",
+                            masked[m.end():brace]):
+            continue  # a constant, not a function (its body would follow a parameter list)
+        depth, i = 0, brace
+        while i < len(masked):
+            depth += {"{": 1, "}": -1}.get(masked[i], 0)
+            if depth == 0:
+                break
+            i += 1
+        lines.update(range(text.count("\n", 0, m.start()) + 1, text.count("\n", 0, i) + 2))
+    return lines
+
+
+def record_coverage(tree, work, jobs_of, parallel):
+    """Runs every test job once in a coverage build of the tree (WORK/coverage/build, the
+    mutation build's flags plus --coverage), each job's processes writing their counters under
+    WORK/coverage/JOB (GCOV_PREFIX). Returns (the jobs' seconds and exit codes, {src file:
+    {"code": lines with code, "jobs": {job: lines executed}}}) — or exits if a job fails."""
+    cov = os.path.join(work, "coverage")
+    build = os.path.join(cov, "build")
+    configure(tree, build, "-D_GLIBCXX_ASSERTIONS --coverage")
+    print("mutation: building the coverage build", flush=True)
+    if not build_all(build):
+        sys.exit("mutation: the coverage build of the unmutated tree does not build")
+    jobs = jobs_of(build)
+    for job in jobs:
+        data = os.path.join(cov, "data", job["dir"])
+        shutil.rmtree(data, ignore_errors=True)
+        # LDFLAGS: a program a test links against the instrumented library (the installed
+        # package's consumer) needs the coverage runtime too.
+        job["env"] = dict(job["env"], GCOV_PREFIX=data, GCOV_PREFIX_STRIP="0",
+                          LDFLAGS="--coverage")
+    print(f"mutation: baseline: {len(jobs)} test jobs, recording the lines each executes",
+          flush=True)
+    # One CPU per job: the counters are shared by a process's threads, and two threads on two
+    # cores updating them made the tests 2.7x slower (one core: 1.16x).
+    failed, why, seconds, codes = run_tests(jobs, work, parallel, {}, pin=True)
+    if failed:
+        sys.exit(f"mutation: the unmutated tree fails {failed} ({why}); see {work}/tmp")
+    print("mutation: reading the coverage (gcov)", flush=True)
+    return (seconds, codes), read_coverage(tree, build, jobs, parallel)
+
+
+def read_coverage(tree, build, jobs, parallel):
+    """{src file: {"code": lines with code, "jobs": {job: lines executed}}} from the counters
+    the jobs wrote (their GCOV_PREFIX) and the coverage build's notes."""
+    notes = {}  # object directory -> .gcno files
+    for top, _, files in os.walk(os.path.join(build, "src")):
+        notes[top] = [f for f in files if f.endswith(".gcno")]
+
+    def lines_executed(job):
+        """{src file: (lines with code, lines the job executed)} from the job's counters."""
+        counters = []
+        for top, names in notes.items():
+            mirror = job["env"]["GCOV_PREFIX"] + top
+            for note in names:
+                gcda = os.path.join(mirror, note[:-len(".gcno")] + ".gcda")
+                if os.path.isfile(gcda):
+                    if not os.path.exists(os.path.join(mirror, note)):
+                        os.symlink(os.path.join(top, note), os.path.join(mirror, note))
+                    counters.append(gcda)
+        found = collections.defaultdict(lambda: (set(), set()))
+        if not counters:
+            return found
+        # -r -s TREE: only the tree's own sources (not the system headers inlined into them).
+        out = subprocess.run(["gcov", "--json-format", "--stdout", "-r", "-s", tree] + counters,
+                             cwd=build, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                             text=True, check=True).stdout
+        for document in filter(str.strip, out.splitlines()):
+            for entry in json.loads(document)["files"]:
+                rel = os.path.relpath(os.path.join(tree, entry["file"]), tree)
+                if re.fullmatch(r"src/\w+/\w+\.cpp", rel):
+                    code, executed = found[rel]
+                    for line in entry["lines"]:
+                        code.add(line["line_number"])
+                        if line["count"] > 0:
+                            executed.add(line["line_number"])
+        return found
+
+    files = collections.defaultdict(lambda: dict(code=set(), jobs={}))
+    with concurrent.futures.ThreadPoolExecutor(parallel) as pool:
+        for job, found in zip(jobs, pool.map(lines_executed, jobs)):
+            for rel, (code, executed) in found.items():
+                files[rel]["code"] |= code
+                files[rel]["jobs"][job["name"]] = executed
+    return files
+
+
+def jobs_reaching(coverage, compile_time, site):
+    """The names of the jobs that execute the mutant's lines, or None (run every job) when
+    coverage cannot tell: a line without code of its own (a table, a constant, a declaration),
+    inside a constexpr function, or executed by no job (e.g. only in a process ended by a
+    signal, which writes no counters)."""
+    lines = set(range(site["line"], site["line"] + site["old"].count("\n") + 1))
+    entry = coverage.get(site["file"])
+    if entry is None or not lines <= entry["code"] or lines & compile_time.get(site["file"], set()):
+        return None
+    names = {job for job, executed in entry["jobs"].items() if lines & executed}
+    return names or None
+
+
+def uncovered_report(coverage, tree, out):
+    """A table of each src/ file's lines with code and the share executed by some job; writes
+    every line no job executes to `out` as FILE:LINE: SOURCE."""
+    rows = ["| file | lines | not executed | executed |", "|---|---:|---:|---:|"]
+    missed = []
+    for rel, entry in sorted(coverage.items()):
+        executed = set().union(*entry["jobs"].values())
+        source = open(os.path.join(tree, rel)).read().split("\n")
+        lost = sorted(entry["code"] - executed)
+        missed += [f"{rel}:{n}: {source[n - 1].strip()}" for n in lost]
+        rows.append(f"| {rel} | {len(entry['code'])} | {len(lost)} | "
+                    f"{100 * (1 - len(lost) / max(1, len(entry['code']))):.1f}% |")
+    open(out, "w").write("\n".join(missed) + "\n")
+    return "\n".join(rows) + f"\n\n{len(missed)} lines not executed: {out}"
 
 
 # --- Report -------------------------------------------------------------------------------------
@@ -444,6 +591,13 @@ def report_block(results, args, head, seconds, skipped_jobs, date=None, cpu=None
 
 # --- Main ---------------------------------------------------------------------------------------
 
+def tested(result):
+    """", build 40 s, 3 jobs" for a mutant that was built and tested, else ""."""
+    if "jobs" not in result:
+        return ""
+    return f", build {result['build_seconds']:.0f} s, {result['jobs']} jobs"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--seed", type=int, default=1)
@@ -456,6 +610,9 @@ def main():
     parser.add_argument("--list", action="store_true", help="print the draw order and stop")
     parser.add_argument("--mutants", help="ID,ID,...: only these mutants (e.g. the survivors of a "
                                           "report, after new tests), instead of the draw")
+    parser.add_argument("--uncovered", action="store_true",
+                        help="no mutants: after the baseline, each src/ file's executed share and "
+                             "WORK/uncovered.txt, every line of src/ no test job executes")
     parser.add_argument("--from-results", action="store_true",
                         help="no run: the report of WORK/results.json (after editing "
                              "tools/mutation_survivors.txt)")
@@ -501,10 +658,30 @@ def main():
     if not build_all(build):
         sys.exit("mutation: the unmutated tree does not build")
     jobs = test_jobs(build)
-    print(f"mutation: baseline: {len(jobs)} test jobs", flush=True)
-    failed, why, baseline, codes = run_tests(jobs, work, args.jobs, {})
-    if failed:
-        sys.exit(f"mutation: the unmutated tree fails {failed} ({why}); see {work}/tmp")
+    # The baseline: every job once on the unmutated tree, in a coverage build, recording the
+    # lines each executes (kept in WORK/coverage.json for later runs on the same commit).
+    saved = os.path.join(work, "coverage.json")
+    names = sorted(j["name"] for j in jobs)
+    cache = json.load(open(saved)) if os.path.isfile(saved) else {}
+    if cache.get("commit") == head and cache.get("jobs") == names:
+        print(f"mutation: baseline and coverage of {len(jobs)} test jobs from {saved}", flush=True)
+    else:
+        started = time.time()
+        (baseline, codes), files = record_coverage(tree, work, test_jobs, args.jobs)
+        print(f"mutation: baseline and coverage in {(time.time() - started) / 60:.0f} min",
+              flush=True)
+        cache = dict(commit=head, jobs=names, baseline=baseline, codes=codes,
+                     files={f: dict(code=sorted(e["code"]),
+                                    jobs={j: sorted(lines) for j, lines in e["jobs"].items()})
+                            for f, e in files.items()})
+        json.dump(cache, open(saved, "w"))
+    baseline, codes = cache["baseline"], cache["codes"]
+    coverage = {f: dict(code=set(e["code"]), jobs={j: set(lines) for j, lines in e["jobs"].items()})
+                for f, e in cache["files"].items()}
+    compile_time = {f: compile_time_lines(open(os.path.join(tree, f)).read()) for f in coverage}
+    if args.uncovered:
+        print(uncovered_report(coverage, tree, os.path.join(work, "uncovered.txt")))
+        return
     # A job skipped at baseline (exit 77: a tool it needs is missing) cannot kill anything.
     skipped_jobs = [j["name"] for j in jobs if j["skip"] is not None and codes[j["name"]] == j["skip"]]
     timeouts = {name: 3 * s + 60 for name, s in baseline.items()}
@@ -540,10 +717,15 @@ def main():
             elif not build_all(build):
                 result["status"] = "invalid"
             else:
-                # The jobs that killed mutants of this file, of this folder, of any, first.
-                ordered = sorted(jobs, key=lambda j: (-kills_by_file[s["file"]][j["name"]],
-                                                      -kills_by_folder[folder][j["name"]],
-                                                      -kills[j["name"]], baseline[j["name"]]))
+                result["build_seconds"] = time.time() - t0
+                # Only the jobs that execute the mutated line (all if coverage cannot tell);
+                # those that killed mutants of this file, of this folder, of any, first.
+                reach = jobs_reaching(coverage, compile_time, s)
+                ordered = sorted((j for j in jobs if reach is None or j["name"] in reach),
+                                 key=lambda j: (-kills_by_file[s["file"]][j["name"]],
+                                                -kills_by_folder[folder][j["name"]],
+                                                -kills[j["name"]], baseline[j["name"]]))
+                result["jobs"] = len(ordered)
                 failed, why, _, _ = run_tests(ordered, work, args.jobs, timeouts)
                 result["status"] = "killed" if failed else "survived"
                 result["killer"], result["reason"] = failed, why
@@ -559,7 +741,8 @@ def main():
             print(f"mutation: [{done}/{total}] {result['status']:10} {s['id']} "
                   f"{s['file']}:{s['line']} {s['op']} {s['old']!r} -> {s['new']!r}"
                   f"{' by ' + failed if result['status'] == 'killed' else ''} "
-                  f"({result['seconds']:.0f} s, {(time.time() - begin) / 60:.0f} min)", flush=True)
+                  f"({result['seconds']:.0f} s{tested(result)}, {(time.time() - begin) / 60:.0f} min)",
+                  flush=True)
     build_all(build)  # the tree restored
     # The jobs that killed must still pass on the unmutated tree: a change of the machine during
     # the run (a tool installed or removed, a disk filling up) would otherwise kill every later
