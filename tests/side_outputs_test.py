@@ -21,12 +21,14 @@
 
 OpenImageIO's and NumPy's Python modules (tools/setup.sh); skipped (exit 77) only without them.
 """
+import base64
 import csv
 import hashlib
 import io
 import json
 import math
 import os
+import re
 import struct
 import subprocess
 import sys
@@ -265,6 +267,39 @@ with tempfile.TemporaryDirectory() as tmp:
     check(kinds == {"sky", "sea", "horizon"}, f"the probed pixels cover {sorted(kinds)}")
     check(ch["coverage"].min() == 0.0 and ch["coverage"].max() == 1.0, "coverage spans 0..1")
     check(ch["foam.R"].max() > 0.0, "the default scene shows no foam in the foam layer")
+
+    # --- The compare report's crops: centred on the worst value ---------------------------------
+    # A golden gradient and a candidate that differs in one pixel only, (20, 10) of 40 x 30: the
+    # first crop row's golden and candidate pictures (15 x 15 values around it, enlarged 8x)
+    # differ in the centre value's 8 x 8 block and nowhere else.
+    yy, xx = np.mgrid[0:30, 0:40]
+    gradient = (0.2 + 0.01 * xx + 0.005 * yy).astype(np.float32)
+    spiked = gradient.copy()
+    spiked[10, 20] += 1.0
+    for name, plane in (("gold", gradient), ("spiked", spiked)):
+        out = oiio.ImageOutput.create(os.path.join(tmp, name + ".exr"))
+        out.open(os.path.join(tmp, name + ".exr"), oiio.ImageSpec(40, 30, 3, "float"))
+        out.write_image(np.repeat(plane[:, :, None], 3, axis=2))
+        out.close()
+    report = os.path.join(tmp, "report")
+    r = subprocess.run([binary, "compare", os.path.join(tmp, "spiked.exr"),
+                        os.path.join(tmp, "gold.exr"), "--report", report],
+                       capture_output=True, text=True)
+    check(r.returncode == 1, f"compare of a spiked image exited {r.returncode}: {r.stderr}")
+    page = open(os.path.join(report, "index.html")).read()
+    row = page[page.index('<table class="crops">'):]
+    row = row[row.index("<tr><td>"):row.index("</tr>", row.index("<tr><td>"))]
+    check(row.startswith("<tr><td>(20, 10)"), f"the first worst value is not (20, 10): {row[:40]}")
+    crops = [decode_png(base64.b64decode(uri)) for uri in
+             re.findall(r'src="data:image/png;base64,([^"]+)"', row)]
+    check(len(crops) == 3 and all(c.shape == (120, 120, 3) for c in crops),
+          f"the crop row holds {len(crops)} pictures of {[c.shape for c in crops]}")
+    changed = np.argwhere(np.any(crops[0] != crops[1], axis=2))
+    check(len(changed) == 64 and changed.min(axis=0).tolist() == [56, 56] and
+          changed.max(axis=0).tolist() == [63, 63],
+          f"golden and candidate crops differ at {changed.min(axis=0) if len(changed) else None}"
+          f"..{changed.max(axis=0) if len(changed) else None} ({len(changed)} pixels), "
+          "not in the centre value's block 56..63")
 
 print(f"side_outputs: {len(failures)} failures")
 sys.exit(1 if failures else 0)

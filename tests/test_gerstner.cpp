@@ -12,13 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "conformance/render_output.h"
 #include "core/errors.h"
 #include "core/math.h"
 #include "core/quadrature.h"
+#include "scene/scene.h"
 #include "spectrum/moments.h"
 #include "waves/direct_sum.h"
 #include "waves/fields.h"
 #include "waves/gerstner.h"
+#include "waves/ocean.h"
 #include "waves/random.h"
 
 using namespace oceanref;
@@ -481,4 +484,39 @@ TEST_CASE("gerstner: the displaced profile of one wave is a trochoid") {
   // c = 1 (u = −1/(kA), Tessendorf's form): a cusp, det J = 0 at the crest.
   const GerstnerWaves cusp{{{a, k, 0.0, 0.0, 0.0}}, -1.0 / (k * a)};
   CHECK(std::fabs(gerstner_point(cusp, 0.0, 0.0, 0.0).jacobian) < 1e-15);
+}
+
+TEST_CASE("gerstner loop check: a 256² lattice over twice the longest wave, below the camera") {
+  // What `render` reports for a Gerstner ocean (gerstner_loop_check): the bound b = |u|Σ k_i A_i,
+  // and where b ≥ 1, det J on a 256² lattice over the square of side 2·(2π/k_min) centred
+  // below the camera at the scene's time. The golden Gerstner scene has b ≈ 1.16.
+  const Scene scene =
+      load_scene(std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/golden/gerstner_waves.json");
+  const Ocean ocean = realize_ocean(scene.waves, 1);
+  REQUIRE(ocean.gerstner.has_value());
+  const GerstnerWaves& g = *ocean.gerstner;
+  const GerstnerLoopCheck c = gerstner_loop_check(scene, ocean);
+  CHECK(c.steepness_bound == gerstner_steepness_bound(g));
+  REQUIRE(c.steepness_bound >= 1.0);
+  CHECK(c.sampled);
+  const double side = 4.0 * std::numbers::pi / g.min_wavenumber;
+  CHECK(c.extent == doctest::Approx(side).epsilon(1e-14));
+  const GerstnerLoops expected = gerstner_loops(g, scene.time, scene.camera.position.x - 0.5 * side,
+                                                scene.camera.position.z - 0.5 * side, side, 256);
+  CHECK(c.loops.min_jacobian == expected.min_jacobian);
+  CHECK(c.loops.folded_fraction == expected.folded_fraction);
+  CHECK(c.loops.min_x == expected.min_x);
+  CHECK(c.loops.min_z == expected.min_z);
+  // The minimum lies inside the square below the camera.
+  CHECK(std::fabs(c.loops.min_x - scene.camera.position.x) <= 0.5 * side);
+  CHECK(std::fabs(c.loops.min_z - scene.camera.position.z) <= 0.5 * side);
+  // Gentler waves (b = 0.5): nothing to sample, det J ≥ 1 − b everywhere.
+  GerstnerWaves softer = g;
+  softer.choppiness *= 0.5 / c.steepness_bound;
+  Ocean gentle = ocean;
+  gentle.gerstner = softer;
+  const GerstnerLoopCheck none = gerstner_loop_check(scene, gentle);
+  CHECK(none.steepness_bound == doctest::Approx(0.5).epsilon(1e-12));
+  CHECK_FALSE(none.sampled);
+  CHECK(none.extent == 0.0);
 }

@@ -4,7 +4,7 @@ wrong?
 
     python3 tools/mutation.py [--seed S] [--per-folder K] [--folders a,b] [--jobs J]
                               [--work DIR] [--report FILE] [--list] [--mutants ID,...]
-                              [--uncovered] [--from-results]
+                              [--all-jobs] [--uncovered] [--from-results]
 
 One small semantic change (a mutant) at a time is made in a clone of HEAD's tree (WORK/tree; the
 working tree is never touched, uncommitted changes are not tested), the clone's build (WORK/build,
@@ -24,8 +24,8 @@ build: the same flags plus --coverage; each job on a CPU of its own, its counter
 WORK/coverage/data/JOB) and reads with gcov the src/ lines each executed. GCC counts before it
 optimises, so the counts are the source's. Every job runs when coverage cannot tell: the line
 has no code of its own (a table, a constant), lies in a constexpr function (the compiler may
-evaluate it), or no job executes it (it may run only in a process ended by a signal, which
-writes no counters). The baseline and coverage are kept in WORK/coverage.json and reused by
+evaluate it), no job executes it (it may run only in a process ended by a signal, which
+writes no counters), or a process outside every job's counter directory executed it. The baseline and coverage are kept in WORK/coverage.json and reused by
 later runs on the same commit.
 
 Mutation operators (on the code of src/*/*.cpp; comments, strings and preprocessor lines are
@@ -69,6 +69,7 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+UNATTRIBUTED = "(counters outside every job's prefix)"
 FOLDERS = ["cli", "conformance", "core", "io", "raster", "scene", "shading", "sky", "spectrum",
            "trace", "waves"]
 
@@ -432,6 +433,13 @@ def record_coverage(tree, work, jobs_of, parallel):
         # package's consumer) needs the coverage runtime too.
         job["env"] = dict(job["env"], GCOV_PREFIX=data, GCOV_PREFIX_STRIP="0",
                           LDFLAGS="--coverage")
+    # Counters written without the prefix (listing the test cases above; or a process a test
+    # started with a cleared environment) land in the build tree: cleared here, read as
+    # unattributed after the run.
+    for top, _, names in os.walk(build):
+        for name in names:
+            if name.endswith(".gcda"):
+                os.remove(os.path.join(top, name))
     print(f"mutation: baseline: {len(jobs)} test jobs, recording the lines each executes",
           flush=True)
     # One CPU per job: the counters are shared by a process's threads, and two threads on two
@@ -440,7 +448,9 @@ def record_coverage(tree, work, jobs_of, parallel):
     if failed:
         sys.exit(f"mutation: the unmutated tree fails {failed} ({why}); see {work}/tmp")
     print("mutation: reading the coverage (gcov)", flush=True)
-    return (seconds, codes), read_coverage(tree, build, jobs, parallel)
+    # A pseudo-job for counters no job's prefix caught: its lines make every job run.
+    stray = dict(name=UNATTRIBUTED, env=dict(GCOV_PREFIX=""))
+    return (seconds, codes), read_coverage(tree, build, jobs + [stray], parallel)
 
 
 def read_coverage(tree, build, jobs, parallel):
@@ -491,14 +501,14 @@ def read_coverage(tree, build, jobs, parallel):
 def jobs_reaching(coverage, compile_time, site):
     """The names of the jobs that execute the mutant's lines, or None (run every job) when
     coverage cannot tell: a line without code of its own (a table, a constant, a declaration),
-    inside a constexpr function, or executed by no job (e.g. only in a process ended by a
-    signal, which writes no counters)."""
+    inside a constexpr function, executed by no job (e.g. only in a process ended by a signal,
+    which writes no counters) or by a process no job's counters caught."""
     lines = set(range(site["line"], site["line"] + site["old"].count("\n") + 1))
     entry = coverage.get(site["file"])
     if entry is None or not lines <= entry["code"] or lines & compile_time.get(site["file"], set()):
         return None
     names = {job for job, executed in entry["jobs"].items() if lines & executed}
-    return names or None
+    return None if not names or UNATTRIBUTED in names else names
 
 
 def uncovered_report(coverage, tree, out):
@@ -610,6 +620,9 @@ def main():
     parser.add_argument("--list", action="store_true", help="print the draw order and stop")
     parser.add_argument("--mutants", help="ID,ID,...: only these mutants (e.g. the survivors of a "
                                           "report, after new tests), instead of the draw")
+    parser.add_argument("--all-jobs", action="store_true",
+                        help="every job for every mutant, not only those that execute its line "
+                             "(slow: checks the coverage's selection on chosen --mutants)")
     parser.add_argument("--uncovered", action="store_true",
                         help="no mutants: after the baseline, each src/ file's executed share and "
                              "WORK/uncovered.txt, every line of src/ no test job executes")
@@ -720,7 +733,7 @@ def main():
                 result["build_seconds"] = time.time() - t0
                 # Only the jobs that execute the mutated line (all if coverage cannot tell);
                 # those that killed mutants of this file, of this folder, of any, first.
-                reach = jobs_reaching(coverage, compile_time, s)
+                reach = None if args.all_jobs else jobs_reaching(coverage, compile_time, s)
                 ordered = sorted((j for j in jobs if reach is None or j["name"] in reach),
                                  key=lambda j: (-kills_by_file[s["file"]][j["name"]],
                                                 -kills_by_folder[folder][j["name"]],
