@@ -19,14 +19,15 @@ runs passes. At the end, every job that killed a mutant runs again on the unmuta
 fails (the machine changed during the run), the run is invalid and no report is written.
 
 Only the jobs that execute the mutated line run: a job that never executes it cannot see the
-change. The baseline runs every job once in a coverage build of the same tree (WORK/coverage/
-build: the same flags plus --coverage; each job on a CPU of its own, its counters written under
-WORK/coverage/data/JOB) and reads with gcov the src/ lines each executed. GCC counts before it
-optimises, so the counts are the source's. Every job runs when coverage cannot tell: the line
-has no code of its own (a table, a constant), lies in a constexpr function (the compiler may
-evaluate it), no job executes it (it may run only in a process ended by a signal, which
-writes no counters), or a process outside every job's counter directory executed it. The baseline and coverage are kept in WORK/coverage.json and reused by
-later runs on the same commit.
+change, and a mutant no job executes survives without a run. The baseline runs every job once in
+a coverage build of the same tree (WORK/coverage/build: the same flags plus --coverage and
+OCEANREF_GCOV_DUMP, with which a process ended by SIGINT, SIGTERM or SIGHUP still writes its
+counters; each job on a CPU of its own, its counters written under WORK/coverage/data/JOB) and
+reads with gcov the src/ lines each executed. GCC counts before it optimises, so the counts are
+the source's. Every job runs when coverage cannot tell: the line has no code of its own (a
+table, a constant), lies in a constexpr function (the compiler may evaluate it), or a process
+outside every job's counter directory executed it. The baseline and coverage are kept in
+WORK/coverage.json and reused by later runs on the same commit.
 
 Mutation operators (on the code of src/*/*.cpp; comments, strings and preprocessor lines are
 never changed):
@@ -421,7 +422,9 @@ def record_coverage(tree, work, jobs_of, parallel):
     {"code": lines with code, "jobs": {job: lines executed}}}) — or exits if a job fails."""
     cov = os.path.join(work, "coverage")
     build = os.path.join(cov, "build")
-    configure(tree, build, "-D_GLIBCXX_ASSERTIONS --coverage")
+    # OCEANREF_GCOV_DUMP: a process ended by SIGINT, SIGTERM or SIGHUP (the tests of Ctrl-C and
+    # of a killed render) writes its counters before it dies (io/output_file.cpp).
+    configure(tree, build, "-D_GLIBCXX_ASSERTIONS -DOCEANREF_GCOV_DUMP --coverage")
     print("mutation: building the coverage build", flush=True)
     if not build_all(build):
         sys.exit("mutation: the coverage build of the unmutated tree does not build")
@@ -499,16 +502,16 @@ def read_coverage(tree, build, jobs, parallel):
 
 
 def jobs_reaching(coverage, compile_time, site):
-    """The names of the jobs that execute the mutant's lines, or None (run every job) when
-    coverage cannot tell: a line without code of its own (a table, a constant, a declaration),
-    inside a constexpr function, executed by no job (e.g. only in a process ended by a signal,
-    which writes no counters) or by a process no job's counters caught."""
+    """The names of the jobs that execute the mutant's lines (none: no test executes them), or
+    None (run every job) when coverage cannot tell: a line without code of its own (a table, a
+    constant, a declaration), inside a constexpr function, or executed by a process no job's
+    counters caught."""
     lines = set(range(site["line"], site["line"] + site["old"].count("\n") + 1))
     entry = coverage.get(site["file"])
     if entry is None or not lines <= entry["code"] or lines & compile_time.get(site["file"], set()):
         return None
     names = {job for job, executed in entry["jobs"].items() if lines & executed}
-    return None if not names or UNATTRIBUTED in names else names
+    return None if UNATTRIBUTED in names else names
 
 
 def uncovered_report(coverage, tree, out):
@@ -587,8 +590,10 @@ def report_block(results, args, head, seconds, skipped_jobs, date=None, cpu=None
                 "| id | site | mutation | why |", "|---|---|---|---|"]
         for r in survivors:
             change = f"`{r['old']}` → `{r['new']}`" if r["new"] else f"`{r['old']}` removed"
+            unrun = "no test executes the line; " if r.get("jobs") == 0 else ""
             out.append(f"| {r['id']} | {r['file']}:{r['line']} | {r['op']}: "
-                       f"{change.replace('|', '&#124;')} | {reasons.get(r['id'], 'UNEXPLAINED')} |")
+                       f"{change.replace('|', '&#124;')} | "
+                       f"{unrun}{reasons.get(r['id'], 'UNEXPLAINED')} |")
         out.append("")
     killers = collections.Counter(r["killer"] for r in scored if r["status"] == "killed")
     out.append("Killed first by: " + ", ".join(f"{name} {n}" for name, n in

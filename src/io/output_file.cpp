@@ -11,6 +11,12 @@
 #include <stdexcept>
 #include <system_error>
 
+#ifdef OCEANREF_GCOV_DUMP
+// tools/mutation.py's coverage build only: the coverage runtime's counters, written out by a
+// process that a signal ends (which would otherwise lose them).
+extern "C" void __gcov_dump(void);
+#endif
+
 namespace oceanref {
 
 namespace fs = std::filesystem;
@@ -50,6 +56,9 @@ extern "C" void remove_temporaries_and_reraise(int signal_number) {
   for (TemporarySlot& slot : g_temporaries) {
     if (slot.state.load() == 2) ::unlink(slot.path);
   }
+#ifdef OCEANREF_GCOV_DUMP
+  __gcov_dump();
+#endif
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
 }
