@@ -272,6 +272,13 @@ TEST_CASE("foam: \"steady\" steps make the accumulation independent of where it 
                        SceneError);
   auto j = nlohmann::json::parse(R"({"waves": {"foam": {"decay": 0, "steps": "steady"}}})");
   CHECK_THROWS_WITH_AS(parse_scene(j), doctest::Contains("decay > 0"), SceneError);
+  // ⌊1/(decay·Δt)⌋ + 2 steps, at most kMaxFoamSteps: 1/(decay·Δt) = 9998.5 gives exactly the
+  // limit (accepted), 9999.5 one step more (refused, naming the count).
+  j["waves"]["foam"]["decay"] = 1.0;
+  j["waves"]["foam"]["time_step"] = 1.0 / 9998.5;
+  CHECK(parse_scene(j).foam.steps == kMaxFoamSteps);
+  j["waves"]["foam"]["time_step"] = 1.0 / 9999.5;
+  CHECK_THROWS_WITH_AS(parse_scene(j), doctest::Contains("would take 10001 steps"), SceneError);
 }
 
 TEST_CASE("foam: the renderer's accumulated whitecaps equal what `fields` accumulates") {
