@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -35,13 +36,21 @@ struct OwnedSurface {
   BoundsTree tree;
 };
 
+// `turn` [rad] rotates the vertices in x0 about the rectangle's centre (the cells' edges then
+// run along neither axis).
 OwnedSurface make_surface(int columns, int rows, double width, double depth,
                           std::function<SurfacePoint(const glm::dvec2&)> point,
-                          const glm::dvec3& lipschitz, const glm::dvec3& offset) {
+                          const glm::dvec3& lipschitz, const glm::dvec3& offset,
+                          double turn = 0.0) {
   OwnedSurface s;
+  const double c = std::cos(turn), n = std::sin(turn);
   for (int j = 0; j < rows; ++j) {
     for (int i = 0; i < columns; ++i) {
-      s.base.push_back({width * i / (columns - 1), depth * j / (rows - 1)});
+      const double x = width * i / (columns - 1) - 0.5 * width;
+      const double z = depth * j / (rows - 1) - 0.5 * depth;
+      s.base.push_back(turn == 0.0
+                           ? glm::dvec2{width * i / (columns - 1), depth * j / (rows - 1)}
+                           : glm::dvec2{0.5 * width + c * x - n * z, 0.5 * depth + n * x + c * z});
       s.corners.push_back(point(s.base.back()).position);
     }
   }
@@ -166,6 +175,23 @@ TEST_CASE("surface tracer: a single wave at grazing views, against marching and 
   MESSAGE("single wave: " << agree << " of " << count << " rays agree, " << hits << " hit");
   CHECK(hits >= count / 2);
   CHECK(agree >= count - 3);
+
+  // The same wave over a grid turned by 20° in x0: each cell's edges mix x0 and z0, so Newton's
+  // Jacobian needs both columns of the surface's derivative; every hit is still refined onto
+  // the surface.
+  const OwnedSurface turned =
+      make_surface(21, 11, 40.0, 40.0, wave, {0.0, a * std::sqrt(kx * kx + kz * kz), 0.0},
+                   {0.0, a, 0.0}, 20.0 * std::numbers::pi / 180.0);
+  int turned_hits = 0;
+  for (const auto& ray : surface_test_rays(1.0)) {
+    settings.forward = ray.second;
+    const SurfaceHit hit = trace_surface(turned.view, turned.tree, settings, ray.first, ray.second);
+    if (!hit.hit) continue;
+    ++turned_hits;
+    CHECK(hit.refined);
+    CHECK(glm::length(ray.first + hit.t * ray.second - wave(hit.x0).position) <= 1e-9 * hit.t);
+  }
+  CHECK(turned_hits >= count / 2);
 }
 
 TEST_CASE("surface tracer: a steep Gerstner wave, against the roots in its parameter") {

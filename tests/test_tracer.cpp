@@ -125,6 +125,39 @@ TEST_CASE("tracer: each quadtree box is its block's box, padded by 1e-9 of its s
   CHECK(leaves == static_cast<std::size_t>((g.columns - 1) * (g.rows - 1)));
 }
 
+TEST_CASE("tracer: each triangle-tree box is its triangles' box, padded by 1e-9 of its size") {
+  // The objects' tree (build_triangle_tree) over the grid's triangles as a mesh: a leaf holds one
+  // triangle and its box is that triangle's, padded; a parent's lies within twice its padding of
+  // the union of its children's.
+  const TestGrid g = make_grid(9, 7, [](double x, double z) { return std::sin(x) * (z - 3.0); });
+  const BoundsTree tree = build_triangle_tree(g.view());
+  const auto& triangles = *g.view().triangles;
+  std::size_t leaves = 0;
+  for (const BoundsTree::Node& n : tree.nodes) {
+    glm::dvec3 lower(HUGE_VAL), upper(-HUGE_VAL);
+    if (n.children[0] < 0) {
+      ++leaves;
+      REQUIRE(n.count == 1);
+      for (const std::uint32_t v : triangles[static_cast<std::size_t>(n.first)]) {
+        lower = glm::min(lower, g.vertices[v]);
+        upper = glm::max(upper, g.vertices[v]);
+      }
+    } else {
+      for (const int c : n.children) {
+        lower = glm::min(lower, tree.nodes[static_cast<std::size_t>(c)].lower);
+        upper = glm::max(upper, tree.nodes[static_cast<std::size_t>(c)].upper);
+      }
+    }
+    const double pad = 1e-9 * (1.0 + std::max(glm::length(lower), glm::length(upper)));
+    const double slack = n.children[0] < 0 ? 1e-15 * (1.0 + glm::length(upper)) : 2.0 * pad;
+    for (int axis = 0; axis < 3; ++axis) {
+      CHECK(std::fabs(n.lower[axis] - (lower[axis] - pad)) <= slack);
+      CHECK(std::fabs(n.upper[axis] - (upper[axis] + pad)) <= slack);
+    }
+  }
+  CHECK(leaves == triangles.size());
+}
+
 TEST_CASE("two renderers: the ray tracer sees what the rasterizer sees, for any thread count") {
   // The glitter scene (sub-pixel glints, the horizon, choppy crests) at 4 spp, and refined
   // adaptively: both renderers shade the same displaced grid, so they differ only where a
