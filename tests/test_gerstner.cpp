@@ -271,6 +271,69 @@ TEST_CASE("gerstner: a drawn set carries the spectrum's variance over its band")
   }
 }
 
+TEST_CASE("gerstner: under the Unified spreading each cell carries Ψ (1 + Δ(k) cos 2θ)/2π") {
+  // The cos-2θ spreading of Elfouhaily et al. (Gamper eq. 3.72) integrates in θ in closed form:
+  // ∫_{θ0}^{θ1} (1 + Δ cos 2t)/2π dt = (θ1 − θ0 + Δ/2 (sin 2t1 − sin 2t0))/2π, t = θ − φ_wind.
+  // Δ(k) = tanh(ln2/4 + 4 (c/c_p)^2.5 + 0.13 u*/c_m (c_m/c)^2.5) with the gravity-capillary
+  // c(k) = √(g/k (1 + (k/k_m)²)), written here with libm. The draw integrates Ψ·D over each cell
+  // in 2-D; here the θ integral is exact and only the k integral is numeric.
+  SpectrumSettings in;
+  in.model = SpectrumModel::jonswap;
+  in.spreading = SpreadingModel::unified;
+  in.wind_direction = 0.3;
+  in.fetch = 5.0e4;
+  const Spectrum s = make_spectrum(in);
+  REQUIRE(s.spreading == SpreadingModel::unified);
+  const UnifiedParameters& u = s.unified;
+  auto upwind_ratio = [&](double k) {
+    const double c = std::sqrt(s.gravity / k *
+                               (1.0 + (k / u.capillary_wavenumber) * (k / u.capillary_wavenumber)));
+    return std::tanh(std::log(2.0) / 4.0 + 4.0 * std::pow(c / u.peak_phase_speed, 2.5) +
+                     0.13 * u.friction_velocity / u.min_phase_speed *
+                         std::pow(u.min_phase_speed / c, 2.5));
+  };
+  GerstnerDraw d;
+  d.count = 48;
+  d.direction_bins = 12;
+  d.min_wavenumber = 0.3 * s.peak_wavenumber;
+  d.max_wavenumber = 300.0 * s.peak_wavenumber;  // up to k_m's neighbourhood, where Δ turns
+  const GerstnerWaves g = draw_gerstner_waves(s, d, 3);
+  const int n_k = d.count / d.direction_bins;
+  double min_ratio = 1.0, max_ratio = 0.0;
+  for (int i = 0; i < n_k; ++i) {
+    const double ratio = d.max_wavenumber / d.min_wavenumber;
+    const double k0 = i == 0 ? d.min_wavenumber
+                             : d.min_wavenumber * math::exp(i / double(n_k) * math::log(ratio));
+    const double k1 = i + 1 == n_k
+                          ? d.max_wavenumber
+                          : d.min_wavenumber * math::exp((i + 1) / double(n_k) * math::log(ratio));
+    min_ratio = std::min(min_ratio, upwind_ratio(k0));
+    max_ratio = std::max(max_ratio, upwind_ratio(k0));
+    for (int j = 0; j < d.direction_bins; ++j) {
+      CAPTURE(i);
+      CAPTURE(j);
+      const double t0 = -kGerstnerPi + 2.0 * kGerstnerPi * j / d.direction_bins;
+      const double t1 = -kGerstnerPi + 2.0 * kGerstnerPi * (j + 1) / d.direction_bins;
+      const QuadratureResult want = integrate(
+          [&](double k) {
+            return wavenumber_spectrum(s, k) *
+                   (t1 - t0 + 0.5 * upwind_ratio(k) * (std::sin(2.0 * t1) - std::sin(2.0 * t0))) /
+                   (2.0 * kGerstnerPi);
+          },
+          {k0, k1}, QuadratureTolerance{1e-12, 0.0, 4000});
+      REQUIRE(want.converged);
+      const GerstnerWave& w = g.waves[static_cast<std::size_t>(i * d.direction_bins + j)];
+      // Both sides converged to ≤ 1e-10 relative; libm's tanh/pow against the library's differ
+      // by ulps.
+      CHECK(std::fabs(0.5 * w.amplitude * w.amplitude / want.value - 1.0) < 1e-8);
+    }
+  }
+  // The band spans Δ's range, so a Δ read at the wrong k would move the cells' split in θ.
+  MESSAGE("Δ(k) over the band's bin edges: " << min_ratio << " … " << max_ratio);
+  CHECK(min_ratio < 0.3);
+  CHECK(max_ratio > 0.9);
+}
+
 TEST_CASE("gerstner: a drawn set depends only on the spectrum, the draw settings and the seed") {
   const Spectrum s = gerstner_spectrum(SpectrumModel::jonswap);
   GerstnerDraw d;
