@@ -188,6 +188,81 @@ TEST_CASE("compare: channels are matched by name or alias, alpha ignored, subset
   CHECK_THROWS_WITH_AS(run(full, sub), doctest::Contains("subsampled"), std::invalid_argument);
 }
 
+TEST_CASE("compare: inputs it cannot compare fairly are refused, naming what is wrong") {
+  const auto refused = [](auto&& call, const std::string& expected) {
+    try {
+      call();
+      FAIL("accepted; expected an error containing: " << expected);
+    } catch (const std::invalid_argument& e) {
+      CHECK_MESSAGE(std::string(e.what()).find(expected) != std::string::npos,
+                    std::string(e.what()));
+    }
+  };
+  const ExrPart g = part({{"R", 1, {1.0f, 1.0f}}, {"G", 1, {2.0f, 2.0f}}}, 2, 1);
+  // Data windows at other origins: the same size is not the same pixels.
+  ExrPart shifted = g;
+  shifted.image.origin_y = 3;
+  refused([&] { run(g, shifted); }, "data windows differ: golden at (0, 0), candidate at (0, 3)");
+  // An explicit map whose golden channel is missing names it and the golden's channels.
+  refused([&] { run(g, g, {}, parse_channel_selection("R=Q")); },
+          "golden has no channel 'Q'; it has 'R', 'G'");
+  // Two golden channels with one alias are ambiguous (by alias only; an exact name decides).
+  const ExrPart two_reds = part({{"R", 1, {1.0f, 1.0f}}, {"rgba.R", 1, {1.0f, 1.0f}}}, 2, 1);
+  refused([&] { run(two_reds, part({{"red", 1, {1.0f, 1.0f}}}, 2, 1)); }, "(ambiguous alias)");
+  CHECK(run(two_reds, part({{"rgba.R", 1, {1.0f, 1.0f}}}, 2, 1)).pass);
+  // Nothing left once alpha is set aside.
+  refused(
+      [&] {
+        run(g, part({{"A", 1, {1.0f, 1.0f}}}, 2, 1));
+      },
+      "no channel to compare (candidate has 'A')");
+  // Two candidate channels onto one golden channel.
+  refused(
+      [&] {
+        run(g, part({{"R", 1, {1.0f, 1.0f}}, {"red", 1, {1.0f, 1.0f}}}, 2, 1));
+      },
+      "golden channel 'R' is matched by more than one candidate channel");
+  // No part at all, on either side.
+  refused([&] { compare_parts({}, {g}, {}, uniform_profile({})); }, "the golden has no image part");
+  refused([&] { compare_parts({g}, {}, {}, uniform_profile({})); },
+          "the candidate has no image part");
+  // A converged comparison needs finite, non-negative error estimates in the golden.
+  ThresholdProfile converged = uniform_profile({});
+  converged.golden_error = true;
+  for (const float e : {-0.5f, kNaN, kInf}) {
+    const ExrPart bad_error = part({{"R", 1, {1.0f, 1.0f}}, {"pixel_error.R", 1, {0.0f, e}}}, 2, 1);
+    refused(
+        [&] {
+          compare_parts({bad_error}, {part({{"R", 1, {1.0f, 1.0f}}}, 2, 1)}, {}, converged);
+        },
+        "pixel_error.R holds a value that is not a finite error");
+  }
+  // Profiles: every key's type and presence.
+  refused([] { parse_profile(R"({"name": "x"})", "f"); },
+          "f: a profile needs \"default\" or \"channels\"");
+  refused([] { parse_profile(R"({"channels": [{"rel": 1}]})", "f"); },
+          "f: channels[0]: needs \"match\"");
+  refused([] { parse_profile(R"({"channels": {"match": "*"}})", "f"); }, "must be an array");
+  refused([] { parse_profile(R"({"default": {"rel": "0.1"}})", "f"); },
+          "f: default.rel: not a number");
+  refused([] { parse_profile(R"({"channels": [{"match": "*", "part": 3}]})", "f"); },
+          "channels[0].part: not a string");
+  // --suggest cannot derive a threshold from runs no threshold would accept.
+  const ExrPart zero = part({{"h", 1, {0.0f}}}, 1, 1);
+  refused(
+      [&] {
+        suggest_thresholds({run(zero, part({{"h", 1, {1e-3f}}}, 1, 1))}, 4.0, 0.0);
+      },
+      "run 1: channel 'h' differs where the golden is 0: raise --floor");
+  refused(
+      [&] {
+        suggest_thresholds({run(zero, part({{"h", 1, {kNaN}}}, 1, 1))}, 4.0, 0.0);
+      },
+      "run 1: channel 'h' has 1 non-finite mismatches");
+  refused([] { ssim(std::vector<double>(144), std::vector<double>(143), 12, 12); },
+          "SSIM: the images differ in size");
+}
+
 TEST_CASE("compare: parts are matched by name and level") {
   ExrPart a = part({{"h", 1, {1.0f}}}, 1, 1);
   a.name = "c0";
