@@ -399,3 +399,66 @@ TEST_CASE("spectrum settings: the library refuses each field outside its range, 
     }
   }
 }
+
+TEST_CASE("spectrum settings: one that does not apply to the model is refused under its key") {
+  // Each refusal is paired with the same setting accepted where it applies, so a check that
+  // always (or never) throws fails here.
+  const auto key_of_refusal = [](const SpectrumSettings& in) -> std::string {
+    try {
+      (void)make_spectrum(in);
+    } catch (const SettingError& e) {
+      return e.key();
+    }
+    return "accepted";
+  };
+  const auto with = [](SpectrumModel model, auto&& set) {
+    SpectrumSettings in;
+    in.model = model;
+    in.fetch = 5.0e4;
+    set(in);
+    return in;
+  };
+  const auto gamma = [](SpectrumSettings& in) { in.gamma = 2.0; };
+  const auto sigma_low = [](SpectrumSettings& in) { in.sigma_low = 0.08; };
+  const auto sigma_high = [](SpectrumSettings& in) { in.sigma_high = 0.1; };
+  const auto peak = [](SpectrumSettings& in) { in.peak_frequency = 0.8; };
+  const auto alpha = [](SpectrumSettings& in) { in.alpha = 0.01; };
+  CHECK(key_of_refusal(with(SpectrumModel::pierson_moskowitz, gamma)) == "gamma");
+  CHECK(key_of_refusal(with(SpectrumModel::donelan, sigma_low)) == "sigma_low");
+  CHECK(key_of_refusal(with(SpectrumModel::unified, sigma_high)) == "sigma_high");
+  CHECK(key_of_refusal(with(SpectrumModel::jonswap, gamma)) == "accepted");
+  CHECK(key_of_refusal(with(SpectrumModel::tma, sigma_high)) == "accepted");
+  CHECK(key_of_refusal(with(SpectrumModel::donelan, peak)) == "peak_frequency");
+  CHECK(key_of_refusal(with(SpectrumModel::phillips, peak)) == "peak_frequency");
+  CHECK(key_of_refusal(with(SpectrumModel::pierson_moskowitz, peak)) == "accepted");
+  CHECK(key_of_refusal(with(SpectrumModel::unified, alpha)) == "alpha");
+  CHECK(key_of_refusal(with(SpectrumModel::donelan, alpha)) == "alpha");
+  CHECK(key_of_refusal(with(SpectrumModel::phillips, alpha)) == "accepted");
+  CHECK(key_of_refusal(with(SpectrumModel::tma, alpha)) == "accepted");
+  // Swell and the spreading blend belong to the cos-2s family.
+  const auto on = [](SpreadingModel spreading, auto&& set) {
+    return [spreading, set](SpectrumSettings& in) {
+      in.spreading = spreading;
+      set(in);
+    };
+  };
+  const auto swell = [](SpectrumSettings& in) { in.swell = 0.5; };
+  const auto blend = [](SpectrumSettings& in) { in.spread_blend = 0.5; };
+  CHECK(key_of_refusal(with(SpectrumModel::jonswap, on(SpreadingModel::cos2, swell))) == "swell");
+  CHECK(key_of_refusal(with(SpectrumModel::jonswap, on(SpreadingModel::unified, blend))) ==
+        "spread_blend");
+  CHECK(key_of_refusal(with(SpectrumModel::jonswap, on(SpreadingModel::mitsuyasu, swell))) ==
+        "accepted");
+  CHECK(key_of_refusal(with(SpectrumModel::jonswap, on(SpreadingModel::hasselmann, blend))) ==
+        "accepted");
+  // The Unified fit holds for Ω_c in [0.84, 5): 100 m of fetch at U10 = 10 m/s gives Ω_c > 5
+  // (Ω_c = 5 near 600 m), refused under "fetch" unless extrapolation is allowed (Ω_c then 5).
+  SpectrumSettings short_fetch = with(SpectrumModel::unified, [](SpectrumSettings&) {});
+  short_fetch.fetch = 100.0;
+  CHECK(key_of_refusal(short_fetch) == "fetch");
+  short_fetch.fetch = 700.0;
+  CHECK(key_of_refusal(short_fetch) == "accepted");
+  short_fetch.fetch = 100.0;
+  short_fetch.allow_extrapolation = true;
+  CHECK(make_spectrum(short_fetch).unified.inverse_wave_age == 5.0);
+}
