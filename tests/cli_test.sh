@@ -720,6 +720,9 @@ expect 2 "^oceanref: --threads: expected an integer in \[0, 1024\]" golden verif
 # --only NAME,NAME: every name of the list is looked up (the last one too).
 expect 2 "^oceanref: --only: no scene named 'nope' in .*reference/golden/manifest.json" \
   golden verify --root "$root/reference" --only default_small,pm_high_sun,nope
+# An empty name (a trailing comma) is a name too, not silently dropped.
+expect 2 "^oceanref: --only: no scene named '' in " \
+  golden verify --root "$root/reference" --only default_small,
 expect 2 "^oceanref: --size: must be in \[1, 8192\], got '0'" sky --sun-zenith-deg 10 --size 0 -o "$tmp/strict.exr"
 expect 2 "^oceanref: --size: expected an integer in \[1, 8192\], got '4x'" sky --sun-zenith-deg 10 --size 4x -o "$tmp/strict.exr"
 expect 2 "^oceanref: --resolution: expected an integer in \[4, 4096\] \(a power of two\), got 'x'" bench synthesis --resolution x
