@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -155,4 +156,46 @@ TEST_CASE("the median lighting error is the lower edge of its 2^-8 bin") {
   CHECK(s.max_relative == relative.back());
   CHECK(s.median_relative <= exact);
   CHECK(s.median_relative > exact * (1.0 - std::ldexp(1.0, -8)));
+}
+
+TEST_CASE("a streamed render refuses what its files cannot hold, under the scene key") {
+  // --samples exports the fixed S×S grid: not Mastin's extra samples, not adaptive refinement;
+  // a tile is rasterized. Each checked beside the accepted case, before any file is written.
+  TempDir dir;
+  const auto key_of_refusal = [&](const Scene& scene, const RenderOutputOptions& options,
+                                  const std::string& samples) -> std::string {
+    try {
+      if (options.tiles > 1) {
+        (void)render_scene_piece(scene, options);
+      } else {
+        (void)render_scene_to_files(scene, options, dir.file("r.exr"), "", samples);
+      }
+    } catch (const SceneError& e) {
+      CHECK_FALSE(std::filesystem::exists(dir.file("r.exr")));
+      return e.path();
+    }
+    return "accepted";
+  };
+  RenderOutputOptions options;
+  options.threads = 1;
+  options.streamed = true;
+  options.keep_samples = true;
+  const Scene plain = streaming_scene("fast");
+  Scene mastin = plain;
+  mastin.image.mastin_antialiasing = 0.05;
+  Scene adaptive = plain;
+  adaptive.image.pixel_tolerance = 0.05;
+  CHECK(key_of_refusal(mastin, options, dir.file("s.exr")) == "render.mastin_antialiasing");
+  CHECK(key_of_refusal(adaptive, options, dir.file("s.exr")) == "render.pixel_tolerance");
+  options.keep_samples = false;
+  CHECK(key_of_refusal(mastin, options, "") == "accepted");
+  CHECK(key_of_refusal(adaptive, options, "") == "accepted");
+  std::filesystem::remove(dir.file("r.exr"));
+  RenderOutputOptions tile;
+  tile.threads = 1;
+  tile.tiles = 2;
+  tile.renderer = Renderer::raytrace;
+  CHECK(key_of_refusal(plain, tile, "") == "render.renderer");
+  tile.renderer = Renderer::raster;
+  CHECK(key_of_refusal(plain, tile, "") == "accepted");
 }
