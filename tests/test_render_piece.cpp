@@ -198,4 +198,42 @@ TEST_CASE("bad pieces are refused, naming the file and what is wrong") {
   CHECK(replaced("\"width\":24", "\"width\":2400000000").find("header key width") !=
         std::string::npos);
   CHECK(replaced("{", "[").find("unreadable header") != std::string::npos);
+  CHECK(replaced("\"scene_sha256\":\"", "\"scene_sha256\":\"0")
+            .find("header key scene_sha256: 64 hex digits expected") != std::string::npos);
+  CHECK(replaced("\"unresolved_slope_variance\":[", "\"unresolved_slope_variance\":[1,")
+            .find("header key unresolved_slope_variance: [upwind, crosswind]") !=
+        std::string::npos);
+  CHECK(replaced("\"displacement_bound\":", "\"displacement_bound\":-")
+            .find("header key displacement_bound: a finite number >= 0") != std::string::npos);
+  CHECK(replaced("{", "{\"extra\":1,").find("keys other than those of format 3") !=
+        std::string::npos);
+  // A piece whose rows are not its tile's.
+  RenderPiece shifted = b;
+  shifted.band.first_row -= 1;
+  CHECK(piece_error_of([&] {
+          merge_render_pieces(scene, {a, shifted}, {p0, "s"});
+        }).find("s: its rows are not tile 1 of 2 of the scene's 24x17 image") == 0);
+}
+
+TEST_CASE("pieces of a render with Mastin's anti-aliasing keep its count of antialiased pixels") {
+  // Only those pieces carry the key (format 3 unchanged otherwise); the merged count is the
+  // whole render's, and not 0.
+  Scene scene = piece_scene();
+  scene.image.mastin_antialiasing = 0.02;
+  TempDir dir;
+  RenderOutputOptions options;
+  options.threads = 2;
+  const RenderedScene whole = render_scene(scene, options);
+  REQUIRE(whole.image.antialiased_pixels > 0);
+  std::vector<RenderPiece> pieces;
+  std::vector<std::string> paths;
+  for (int i = 0; i < 3; ++i) {
+    paths.push_back(dir.file("m" + std::to_string(i) + ".piece"));
+    write_render_piece(paths.back(), piece_of(scene, i, 3, false));
+    pieces.push_back(read_render_piece(paths.back()));
+    CHECK(pieces.back().antialiased);
+  }
+  const RenderedImage merged = merge_render_pieces(scene, pieces, paths);
+  CHECK(merged.antialiased_pixels == whole.image.antialiased_pixels);
+  CHECK(same_bits(merged.radiance, whole.image.radiance));
 }
