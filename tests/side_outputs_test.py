@@ -287,6 +287,10 @@ with tempfile.TemporaryDirectory() as tmp:
                        capture_output=True, text=True)
     check(r.returncode == 1, f"compare of a spiked image exited {r.returncode}: {r.stderr}")
     page = open(os.path.join(report, "index.html")).read()
+    # The part's heading: a single-level image has no "level" in it (only mip levels > 0 do).
+    heading = re.findall(r"<h2>part [^<]*</h2>", page)
+    check(heading == ["<h2>part (single): 40&times;30, FAIL, failing pixels 0.0833%</h2>"],
+          f"the report's part headings are {heading}")
     row = page[page.index('<table class="crops">'):]
     row = row[row.index("<tr><td>"):row.index("</tr>", row.index("<tr><td>"))]
     check(row.startswith("<tr><td>(20, 10)"), f"the first worst value is not (20, 10): {row[:40]}")
