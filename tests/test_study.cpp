@@ -162,6 +162,24 @@ TEST_CASE("lighting map plot: every point where its time and error put it, label
     CHECK(lines[l][2] == dots[2 * l + 1][0]);
     CHECK(lines[l][3] == dots[2 * l + 1][1]);
   }
+  // The x axis in each panel: its tick labels ("1eN", 11 px type) a line below the panel, its
+  // title a line below them, inside the picture.
+  std::smatch picture_height;
+  REQUIRE(std::regex_search(svg, picture_height, std::regex(R"re(<svg [^>]*height="([\d.]+)")re")));
+  const auto x_ticks =
+      all(std::regex(R"re(<text x="([-\d.e]+)" y="([-\d.e]+)" text-anchor="middle">1e-?\d+<)re"));
+  const auto x_titles = all(std::regex(
+      R"re(<text x="([-\d.e]+)" y="([-\d.e]+)" text-anchor="middle">time per integral \[s\]<)re"));
+  REQUIRE(x_titles.size() == 3);
+  REQUIRE(x_ticks.size() >= 6);
+  for (const std::vector<double>& tick : x_ticks) {
+    CHECK(tick[1] >= panels[0][1] + panels[0][3] + 11.0);
+    for (const std::vector<double>& title : x_titles) CHECK(title[1] >= tick[1] + 11.0);
+  }
+  for (std::size_t p = 0; p < 3; ++p) {
+    CHECK(x_titles[p][0] == doctest::Approx(panels[p][0] + panels[p][2] / 2));
+    CHECK(x_titles[p][1] <= std::stod(picture_height[1].str()));
+  }
   // The labels (9 px type: at most 5.6 px per character, 10 px tall): each beside a dot, no two
   // overlapping.
   struct Label {
