@@ -567,7 +567,29 @@ TEST_CASE("float32 backend: scenes it cannot reproduce are refused by name") {
   const Scene mastin = load_scene(root + "phillips_mastin_looking_up.json");
   CHECK_THROWS_WITH_AS(float32_stage_parts(mastin.waves, Stage::h0, 0.0),
                        doctest::Contains("waves.realization: mastin"), std::invalid_argument);
-  CHECK_NOTHROW(check_float32_support(load_scene(root + "tma_shallow_grazing.json").waves));
+  const WaveSettings tma = load_scene(root + "tma_shallow_grazing.json").waves;
+  CHECK_NOTHROW(check_float32_support(tma));
+  // Each refusal of a setting beside the same scene with the supported choice.
+  WaveSettings exact_tma = tma;
+  exact_tma.spectrum.depth_attenuation = DepthAttenuation::exact;
+  CHECK_THROWS_WITH_AS(check_float32_support(exact_tma),
+                       doctest::Contains("waves.spectrum.tma_attenuation: exact"),
+                       std::invalid_argument);
+  exact_tma.spectrum.depth = std::numeric_limits<double>::infinity();  // deep: Φ = 1 either way
+  CHECK_NOTHROW(check_float32_support(exact_tma));
+  WaveSettings spread = tma;
+  spread.spectrum.spreading = SpreadingModel::unified;
+  CHECK_THROWS_WITH_AS(check_float32_support(spread),
+                       doctest::Contains("waves.spreading.model: unified is not supported"),
+                       std::invalid_argument);
+  spread.spectrum.spreading = SpreadingModel::mitsuyasu;
+  spread.spectrum.swell = 0.5;
+  spread.spectrum.swell_model = SwellModel::alimardanov;
+  CHECK_THROWS_WITH_AS(check_float32_support(spread),
+                       doctest::Contains("waves.spreading.swell_model: only lutz"),
+                       std::invalid_argument);
+  spread.spectrum.swell_model = SwellModel::lutz;
+  CHECK_NOTHROW(check_float32_support(spread));
 }
 
 namespace {
