@@ -239,6 +239,47 @@ TEST_CASE("golden suite: verify passes on a copy, fails naming the hash after a 
   CHECK_FALSE(bad_scene.pass());
   CHECK(bad_scene.scenes[0].differs.size() == 4);
   CHECK(bad_scene.scenes[0].comparison.find("result: fail") != std::string::npos);
+  // Without the stored image the mismatch still reports, saying why nothing was compared.
+  const auto image_path = root / "golden" / (kTinyGolden + ".exr");
+  std::filesystem::rename(image_path, root / "away.exr");
+  const GoldenReport no_image = verify_golden(root, options);
+  CHECK(no_image.mismatches == 1);
+  CHECK(no_image.scenes[0].comparison.rfind("# cannot compare with " + image_path.string(), 0) ==
+        0);
+  std::filesystem::rename(root / "away.exr", image_path);
+
+  // A scene whose render fails the physics checks (an inert key) is INVALID, whatever its
+  // hashes, and update writes nothing of it.
+  nlohmann::json inert = s;
+  inert["shading"]["whitecap_threshold"] = 0.5;  // whitecaps are off
+  write_json(scene_path, inert);
+  const std::string manifest_before = read_json(manifest_path).dump();
+  for (const bool update : {false, true}) {
+    CAPTURE(update);
+    const GoldenReport invalid =
+        update ? update_golden(root, options) : verify_golden(root, options);
+    CHECK_FALSE(invalid.pass());
+    CHECK(invalid.invalid == 1);
+    CHECK(invalid.mismatches == 0);
+    CHECK(invalid.scenes[0].status == "INVALID");
+    REQUIRE(invalid.scenes[0].physics.size() == 1);
+    CHECK(invalid.scenes[0].physics[0].find("shading.whitecap_threshold has no effect") !=
+          std::string::npos);
+    CHECK(read_json(manifest_path).dump() == manifest_before);
+  }
+  write_json(scene_path, s);
+
+  // A manifest that is not JSON names the file.
+  const std::string manifest_text = read_json(manifest_path).dump();
+  std::ofstream(manifest_path) << "{\"entries\": [";
+  try {
+    verify_golden(root, options);
+    FAIL("no error");
+  } catch (const GoldenInputError& e) {
+    CHECK(e.option() == "root");
+    CHECK(std::string(e.what()).find(manifest_path.string() + ": not valid JSON") == 0);
+  }
+  std::ofstream(manifest_path) << manifest_text;
 
   // Update rewrites the manifest (no temporary left behind) and the files; verify then passes.
   const GoldenReport updated = update_golden(root, options);
