@@ -550,6 +550,42 @@ expect 2 '--renderer: expected one of raster, raytrace, raytrace_surface' render
 expect 2 '--renderer.*not with --tile' render "$tmp/render.json" -o "$tmp/x.piece" \
   --renderer raytrace --tile 0/2
 
+# A Gerstner ocean's loops: render reports the bound |u| sum k A (linear in the choppiness u)
+# and, where it is >= 1, a lattice's min det J (>= 1 - bound) and folded share; a warning names
+# the share in percent when det J < 0. The golden Gerstner scene, reduced, at u = -1 and -4.
+for u in 1 4; do
+  /usr/bin/python3 -c "import json, sys
+s = json.load(open(sys.argv[1]))
+s['waves']['choppiness'] = -float(sys.argv[2])
+s['grid'] = {'columns': 16, 'rows': 16}
+s['shading'] = {'accuracy': 'fast'}
+s['render'] = {'width': 16, 'height': 9, 'samples_per_pixel': 1}
+json.dump(s, open(sys.argv[3], 'w'))" "$source_dir/reference/scenes/golden/gerstner_waves.json" "$u" \
+    "$tmp/gerstner$u.json"
+  expect 0 '^gerstner_folded_fraction,' render "$tmp/gerstner$u.json" -o "$tmp/gerstner$u.exr" --threads 2
+  cp "$tmp/out" "$tmp/gerstner$u.out"
+  cp "$tmp/err" "$tmp/gerstner$u.err"
+done
+checks=$((checks + 1))
+/usr/bin/python3 - "$tmp" <<'PY' || fail "render's Gerstner loop report"
+import re, sys
+tmp = sys.argv[1]
+def report(u):
+    rows = dict(l.split(",", 1) for l in open(f"{tmp}/gerstner{u}.out").read().splitlines() if "," in l)
+    return {k: float(rows[k]) for k in ("gerstner_steepness_bound", "gerstner_min_jacobian",
+                                        "gerstner_folded_fraction")}
+one, four = report(1), report(4)
+ok = abs(four["gerstner_steepness_bound"] / one["gerstner_steepness_bound"] - 4) < 1e-12
+ok &= one["gerstner_steepness_bound"] > 1 and one["gerstner_min_jacobian"] >= 1 - one["gerstner_steepness_bound"]
+ok &= one["gerstner_min_jacobian"] > 0 and one["gerstner_folded_fraction"] == 0
+ok &= 1 - four["gerstner_steepness_bound"] <= four["gerstner_min_jacobian"] < 0 < four["gerstner_folded_fraction"]
+warning = open(f"{tmp}/gerstner4.err").read()
+m = re.search(r"det J < 0 on ([0-9.e+-]+)% of a", warning)
+ok &= m is not None and abs(float(m.group(1)) - 100 * four["gerstner_folded_fraction"]) < 1e-12
+ok &= "loop" not in open(f"{tmp}/gerstner1.err").read()
+sys.exit(0 if ok else 1)
+PY
+
 # The preview's tone-mapping keys reach the PNG (and only the PNG: the pixel hash is the same).
 for key in 'tone_key": 0.5' 'tone_white": 3'; do
   sed "s/\"samples_per_pixel\": 4}/\"samples_per_pixel\": 4, \"${key}}/" "$tmp/render.json" >"$tmp/tone.json"
@@ -663,6 +699,20 @@ expect 0 '^result: pass' compare "$tmp/f32.exr" "$tmp/gold.exr" --profile "$tmp/
 printf '# runs\nf32.exr gold.exr\n' >"$tmp/runs.txt"
 expect 0 '"match": "c\*\.ddx_dz\.V"' compare --suggest --list "$tmp/runs.txt"
 expect 2 '--suggest.*non-finite|--suggest' compare --suggest "$tmp/gold.exr"
+# A run list's lines: CANDIDATE GOLDEN, or CANDIDATE alone with the GOLDEN given last.
+printf 'f32.exr\n' >"$tmp/runs1.txt"
+expect 0 '"match": "c\*\.ddx_dz\.V"' compare --suggest --list "$tmp/runs1.txt" "$tmp/gold.exr"
+expect 2 "^oceanref: --list: .*runs1.txt:1: one file, but no GOLDEN was given$" compare --suggest \
+  --list "$tmp/runs1.txt"
+printf '# runs\n\nf32.exr gold.exr x.exr\n' >"$tmp/runs3.txt"
+expect 2 "^oceanref: --list: .*runs3.txt:3: expected CANDIDATE or CANDIDATE GOLDEN$" compare \
+  --suggest --list "$tmp/runs3.txt"
+printf '# none\n' >"$tmp/runs0.txt"
+expect 2 "^oceanref: --list: .*runs0.txt: no run listed$" compare --suggest --list "$tmp/runs0.txt"
+expect 2 "^oceanref: --list: --list and --output belong to --suggest$" compare "$tmp/f32.exr" \
+  "$tmp/gold.exr" --list "$tmp/runs.txt"
+expect 2 "^oceanref: --suggest: cannot be combined with --report, --profile" compare --suggest \
+  "$tmp/f32.exr" "$tmp/gold.exr" --report "$tmp/suggest_report"
 expect 2 '--yes' golden update --root reference
 
 # --- bench lighting-map and lighting-pixels (tools/lighting_accuracy_map.sh) -------------------
