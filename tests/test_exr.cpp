@@ -345,6 +345,45 @@ TEST_CASE("read_exr_parts: clear errors for a missing file, a non-EXR file and d
   CHECK(e3.find("part 0: deep data (deepscanline) is not supported") != std::string::npos);
 }
 
+TEST_CASE("EXR sampling and size: what oceanref cannot hold is refused, naming the channel") {
+  const TempDir dir;
+  // Written: an empty image; a channel whose sampling does not divide the size.
+  ExrImage empty;
+  empty.width = 0;
+  empty.height = 3;
+  const std::string out = dir.file("out.exr");
+  CHECK(error_of([&] { write_exr(out, empty); }) == out + ": size 0x3 is empty");
+  ExrImage odd;
+  odd.width = 3;
+  odd.height = 2;
+  odd.channels.push_back({"Y", 2, {1.0f}});
+  CHECK(error_of([&] { write_exr(out, odd); }) ==
+        out + ": channel Y has sampling 2, which does not divide the size");
+  odd.width = 4;  // 2 divides 4 x 2: accepted, and read back with its sampling
+  odd.channels[0].values = {1.0f, 2.0f};
+  write_exr(out, odd);
+  const ExrImage back = read_exr(out);
+  REQUIRE(back.channels.size() == 1);
+  CHECK(back.channels[0].sampling == 2);
+  CHECK(back.channels[0].values == std::vector<float>{1.0f, 2.0f});
+  // Read: x and y sampling that differ (OpenEXR allows it; ExrChannel has one factor).
+  const std::string uneven = dir.file("uneven.exr");
+  {
+    Imf::Header header(4, 2);
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT, 2, 1));
+    Imf::OutputFile file(uneven.c_str(), header);
+    std::vector<float> y(4, 1.0f);
+    Imf::FrameBuffer frame;
+    frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(y.data()), sizeof(float),
+                                 2 * sizeof(float), 2, 1));
+    file.setFrameBuffer(frame);
+    file.writePixels(2);
+  }
+  CHECK(error_of([&] { read_exr(uneven); })
+            .find("channel Y has sampling 2,1 (supported: equal x and y sampling dividing the "
+                  "data window)") != std::string::npos);
+}
+
 TEST_CASE(
     "read_exr_parts: string-vector and preview attributes measured before OpenEXR reads them") {
   // A file another tool could write: a multi-view list (stringvector) and a 3 × 2 preview.
