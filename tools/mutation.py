@@ -24,8 +24,10 @@ a coverage build of the same tree (WORK/coverage/build: the same flags plus --co
 OCEANREF_GCOV_DUMP, with which a process ended by SIGINT, SIGTERM or SIGHUP still writes its
 counters; each job on a CPU of its own, its counters written under WORK/coverage/data/JOB) and
 reads with gcov the src/ lines each executed. GCC counts before it optimises, so the counts are
-the source's. Every job runs when coverage cannot tell: the line has no code of its own (a
-table, a constant), lies in a constexpr function (the compiler may evaluate it), or a process
+the source's; a line without counters of its own inside a function (code the optimiser merged
+into a neighbour's line) is reached by the jobs that execute any line of the innermost function
+around it. Every job runs when coverage cannot tell: the line lies outside any function (a
+table, a constant) or in a constexpr function (the compiler may evaluate it), or a process
 outside every job's counter directory executed it. The baseline and coverage are kept in
 WORK/coverage.json and reused by later runs on the same commit.
 
@@ -71,6 +73,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 UNATTRIBUTED = "(counters outside every job's prefix)"
+COVERAGE_FORMAT = 2  # of WORK/coverage.json: 2 keeps each file's function ranges
 FOLDERS = ["cli", "conformance", "core", "io", "raster", "scene", "shading", "sky", "spectrum",
            "trace", "waves"]
 
@@ -458,8 +461,9 @@ def record_coverage(tree, work, jobs_of, parallel):
 
 
 def read_coverage(tree, build, jobs, parallel):
-    """{src file: {"code": lines with code, "jobs": {job: lines executed}}} from the counters
-    the jobs wrote (their GCOV_PREFIX) and the coverage build's notes."""
+    """{src file: {"code": lines with code, "functions": (first, last line) of each function,
+    "jobs": {job: lines executed}}} from the counters the jobs wrote (their GCOV_PREFIX) and the
+    coverage build's notes."""
     notes = {}  # object directory -> .gcno files
     for top, _, files in os.walk(os.path.join(build, "src")):
         notes[top] = [f for f in files if f.endswith(".gcno")]
@@ -475,7 +479,7 @@ def read_coverage(tree, build, jobs, parallel):
                     if not os.path.exists(os.path.join(mirror, note)):
                         os.symlink(os.path.join(top, note), os.path.join(mirror, note))
                     counters.append(gcda)
-        found = collections.defaultdict(lambda: (set(), set()))
+        found = collections.defaultdict(lambda: (set(), set(), set()))
         if not counters:
             return found
         # -r -s TREE: only the tree's own sources (not the system headers inlined into them).
@@ -486,32 +490,47 @@ def read_coverage(tree, build, jobs, parallel):
             for entry in json.loads(document)["files"]:
                 rel = os.path.relpath(os.path.join(tree, entry["file"]), tree)
                 if re.fullmatch(r"src/\w+/\w+\.cpp", rel):
-                    code, executed = found[rel]
+                    code, executed, functions = found[rel]
                     for line in entry["lines"]:
                         code.add(line["line_number"])
                         if line["count"] > 0:
                             executed.add(line["line_number"])
+                    functions.update((f["start_line"], f["end_line"]) for f in entry["functions"])
         return found
 
-    files = collections.defaultdict(lambda: dict(code=set(), jobs={}))
+    files = collections.defaultdict(lambda: dict(code=set(), functions=set(), jobs={}))
     with concurrent.futures.ThreadPoolExecutor(parallel) as pool:
         for job, found in zip(jobs, pool.map(lines_executed, jobs)):
-            for rel, (code, executed) in found.items():
+            for rel, (code, executed, functions) in found.items():
                 files[rel]["code"] |= code
+                files[rel]["functions"] |= functions
                 files[rel]["jobs"][job["name"]] = executed
     return files
 
 
 def jobs_reaching(coverage, compile_time, site):
     """The names of the jobs that execute the mutant's lines (none: no test executes them), or
-    None (run every job) when coverage cannot tell: a line without code of its own (a table, a
-    constant, a declaration), inside a constexpr function, or executed by a process no job's
-    counters caught."""
+    None (run every job) when coverage cannot tell. A line without counters of its own inside a
+    function (code the optimiser merged into a neighbour's, a declaration) counts as executed by
+    every job that executes any line of the innermost function around it: it runs only once
+    that function is entered. Every job runs for a line outside any function (a table, a
+    constant), inside a constexpr function (the compiler may evaluate it), or executed by a
+    process no job's counters caught."""
     lines = set(range(site["line"], site["line"] + site["old"].count("\n") + 1))
     entry = coverage.get(site["file"])
-    if entry is None or not lines <= entry["code"] or lines & compile_time.get(site["file"], set()):
+    if entry is None or lines & compile_time.get(site["file"], set()):
         return None
-    names = {job for job, executed in entry["jobs"].items() if lines & executed}
+    reached = set()
+    for line in lines:
+        if line in entry["code"]:
+            reached.add(line)
+            continue
+        around = [f for f in entry["functions"] if f[0] <= line <= f[1]]
+        if not around:
+            return None
+        first, last = min(around, key=lambda f: f[1] - f[0])
+        reached.update(range(first, last + 1))
+    names = {job for job, executed in entry["jobs"].items() if reached & executed}
     return None if UNATTRIBUTED in names else names
 
 
@@ -682,20 +701,23 @@ def main():
     saved = os.path.join(work, "coverage.json")
     names = sorted(j["name"] for j in jobs)
     cache = json.load(open(saved)) if os.path.isfile(saved) else {}
-    if cache.get("commit") == head and cache.get("jobs") == names:
+    if (cache.get("commit") == head and cache.get("jobs") == names and
+            cache.get("format") == COVERAGE_FORMAT):
         print(f"mutation: baseline and coverage of {len(jobs)} test jobs from {saved}", flush=True)
     else:
         started = time.time()
         (baseline, codes), files = record_coverage(tree, work, test_jobs, args.jobs)
         print(f"mutation: baseline and coverage in {(time.time() - started) / 60:.0f} min",
               flush=True)
-        cache = dict(commit=head, jobs=names, baseline=baseline, codes=codes,
-                     files={f: dict(code=sorted(e["code"]),
+        cache = dict(format=COVERAGE_FORMAT, commit=head, jobs=names, baseline=baseline,
+                     codes=codes,
+                     files={f: dict(code=sorted(e["code"]), functions=sorted(e["functions"]),
                                     jobs={j: sorted(lines) for j, lines in e["jobs"].items()})
                             for f, e in files.items()})
         json.dump(cache, open(saved, "w"))
     baseline, codes = cache["baseline"], cache["codes"]
-    coverage = {f: dict(code=set(e["code"]), jobs={j: set(lines) for j, lines in e["jobs"].items()})
+    coverage = {f: dict(code=set(e["code"]), functions={tuple(r) for r in e["functions"]},
+                        jobs={j: set(lines) for j, lines in e["jobs"].items()})
                 for f, e in cache["files"].items()}
     compile_time = {f: compile_time_lines(open(os.path.join(tree, f)).read()) for f in coverage}
     if args.uncovered:
