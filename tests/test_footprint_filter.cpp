@@ -305,3 +305,49 @@ TEST_CASE("footprint filtering at 1 spp: the sea closer to the converged integra
   CHECK(filtered_rms < 0.5 * plain_rms);
   CHECK(std::fabs(filtered_energy - 1.0) < 0.15);
 }
+
+TEST_CASE("footprint filter: direct summation of each level equals its grids at their nodes") {
+  // Interpolation::direct sums each filtered level's modes (evolve_ocean of the level); the grid
+  // modes interpolate the level's FFT grids, which hold the same sums at their nodes. At the
+  // origin, a node of every cascade, both read the same fields at any footprint, to rounding.
+  const Ocean ocean = realize_ocean(small_waves(), 1);
+  const double time = 0.9;
+  const double bound = height_bound(ocean);
+  for (const ShadingNormals normals : {ShadingNormals::surface, ShadingNormals::high_resolution}) {
+    CAPTURE(choice_name(kShadingNormals, normals));
+    const FootprintFilter direct =
+        make_footprint_filter(ocean, time, Interpolation::direct, normals, false, 2);
+    const FootprintFilter grid =
+        make_footprint_filter(ocean, time, Interpolation::bicubic, normals, false, 2);
+    REQUIRE(direct.radii == grid.radii);
+    REQUIRE(direct.levels.size() == grid.levels.size());
+    for (const FilterLevel& level : direct.levels) {
+      CHECK(level.grids.empty());
+      CHECK(level.evolved.size() >= ocean.cascades.size());
+    }
+    const std::vector<CascadeFields> fields = synthesize_ocean(ocean, time, 1);
+    const std::vector<EvolvedCascade> evolved = evolve_ocean(ocean, time);
+    for (const double r : {0.1, 0.7, 3.0, 20.0, 400.0}) {
+      CAPTURE(r);
+      const Footprint f{r * r, 0.3 * r * r, 0.1 * r * r};
+      const PointFields a = filtered_fields_at(ocean, {}, evolved, direct, 0.0, 0.0, f,
+                                               Interpolation::direct, normals);
+      const PointFields b =
+          filtered_fields_at(ocean, fields, {}, grid, 0.0, 0.0, f, Interpolation::bicubic, normals);
+      CHECK(std::fabs(a.height - b.height) <= 1e-9 * bound);
+      // `surface` normals take the slopes and displacement derivatives of the interpolant (a
+      // Catmull-Rom derivative at a node is not the spectral one): only the values compare.
+      const bool all = normals == ShadingNormals::high_resolution;
+      for (std::size_t i = 0; i < kFieldCount; ++i) {
+        CAPTURE(i);
+        const auto field = static_cast<Field>(i);
+        if (!all && field != Field::height && field != Field::displacement_x &&
+            field != Field::displacement_z) {
+          continue;
+        }
+        CHECK(std::fabs(a.raw[i] - b.raw[i]) <= 1e-9 * (1.0 + std::fabs(b.raw[i])));
+      }
+      if (all) CHECK(std::fabs(a.jacobian - b.jacobian) <= 1e-9);
+    }
+  }
+}
