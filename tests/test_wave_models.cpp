@@ -106,6 +106,10 @@ TEST_CASE("gerstner ocean: settings that do not go with it name their key") {
   };
   refused(R"({"waves": {"synthesis": "tiling_and_blending"}})", "waves.synthesis");
   refused(R"({"waves": {"choppiness": [-1, -0.5]}})", "waves.choppiness");
+  // With two cascades an array of two passes the cascades' own check; a Gerstner set has one.
+  refused(R"({"waves": {"cascades": {"count": 2}, "choppiness": [-1, -0.5]}})",
+          "waves.choppiness: must be one number (waves.model is gerstner");
+  refused(R"({"waves": {"realization": "mastin"}})", "waves.realization: must be gaussian");
   refused(R"({"waves": {"gerstner": {"direction_bins": 5}}})", "waves.gerstner.direction_bins");
   refused(R"({"waves": {"gerstner": {"min_wavelength": 50, "max_wavelength": 20}}})",
           "waves.gerstner.min_wavelength");

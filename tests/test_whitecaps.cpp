@@ -279,6 +279,21 @@ TEST_CASE("foam: \"steady\" steps make the accumulation independent of where it 
   CHECK(parse_scene(j).foam.steps == kMaxFoamSteps);
   j["waves"]["foam"]["time_step"] = 1.0 / 9999.5;
   CHECK_THROWS_WITH_AS(parse_scene(j), doctest::Contains("would take 10001 steps"), SceneError);
+  // Accumulated whitecaps are read at a sample's point, not filtered to its footprint: steps
+  // with whitecaps and footprint filtering are refused; any two of the three are accepted.
+  nlohmann::json filtered = nlohmann::json::parse(
+      R"({"waves": {"foam": {"steps": 4}}, "shading": {"whitecaps": true},
+          "render": {"footprint_filtering": true}})");
+  CHECK_THROWS_WITH_AS(parse_scene(filtered), doctest::Contains("waves.foam.steps: accumulated"),
+                       SceneError);
+  for (const auto& [key, off] : {std::pair{"/waves/foam/steps", nlohmann::json(0)},
+                                 std::pair{"/shading/whitecaps", nlohmann::json(false)},
+                                 std::pair{"/render/footprint_filtering", nlohmann::json(false)}}) {
+    CAPTURE(key);
+    nlohmann::json accepted = filtered;
+    accepted[nlohmann::json::json_pointer(key)] = off;
+    CHECK_NOTHROW(parse_scene(accepted));
+  }
 }
 
 TEST_CASE("foam: the renderer's accumulated whitecaps equal what `fields` accumulates") {
