@@ -279,3 +279,24 @@ TEST_CASE("strict parsing: CLI11 options convert through integer_in and number_i
         "--share: expected a finite number in [0, 1], got 'inf'");
   CHECK(parse_error({"--share", "1.5"}) == "--share: must be in [0, 1], got '1.5'");
 }
+
+TEST_CASE("render's progress bar: the filled share, the percentage and the time left") {
+  using oceanref::cli::progress_bar_text;
+  const auto bar = [](int filled) {
+    return "\r  [" + std::string(static_cast<std::size_t>(filled), '#') +
+           std::string(static_cast<std::size_t>(40 - filled), ' ') + "] ";
+  };
+  // Nothing done yet: no rate, no ETA.
+  CHECK(progress_bar_text(0.0, 3.0) == bar(0) + "0%");
+  // A quarter in 10 s: 30 s left at that rate.
+  CHECK(progress_bar_text(0.25, 10.0) == bar(10) + "25%  ETA 30 s ");
+  // Half in 100 s: 100 s left = 1 min 40 s; 59.6 s rounds to a whole minute.
+  CHECK(progress_bar_text(0.5, 100.0) == bar(20) + "50%  ETA 1 min 40 s ");
+  CHECK(progress_bar_text(0.5, 59.6) == bar(20) + "50%  ETA 1 min 0 s ");
+  CHECK(progress_bar_text(0.5, 59.4) == bar(20) + "50%  ETA 59 s ");
+  // 10% after 450 s: 4050 s = 67 min 30 s.
+  CHECK(progress_bar_text(0.1, 450.0) == bar(4) + "10%  ETA 67 min 30 s ");
+  // Done: the time taken and the end of the line; shares round down.
+  CHECK(progress_bar_text(1.0, 12.4) == bar(40) + "100%  12 s\n");
+  CHECK(progress_bar_text(0.999, 1.0).find(bar(39) + "99%  ETA 0 s ") == 0);
+}

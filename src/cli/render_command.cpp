@@ -146,20 +146,7 @@ std::function<void(double)> progress_bar() {
     state->shown = share;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - state->start).count();
-    const int width = 40;
-    const int filled = static_cast<int>(share * width);
-    std::string eta;
-    if (share > 0.0 && share < 1.0) {
-      const long left = std::lround(elapsed * (1.0 - share) / share);
-      eta = "  ETA " + (left >= 60 ? std::to_string(left / 60) + " min " : std::string()) +
-            std::to_string(left % 60) + " s ";
-    } else if (share >= 1.0) {
-      eta = "  " + std::to_string(std::lround(elapsed)) + " s";
-    }
-    std::cerr << "\r  [" << std::string(static_cast<std::size_t>(filled), '#')
-              << std::string(static_cast<std::size_t>(width - filled), ' ') << "] "
-              << static_cast<int>(share * 100.0) << "%" << eta << (share >= 1.0 ? "\n" : "")
-              << std::flush;
+    std::cerr << progress_bar_text(share, elapsed) << std::flush;
   };
 }
 }  // namespace

@@ -55,6 +55,22 @@ double parse_number_in(const std::string& flag, std::string_view text, double lo
   return v;
 }
 
+std::string progress_bar_text(double share, double elapsed) {
+  const int width = 40;
+  const int filled = static_cast<int>(share * width);
+  std::string eta;
+  if (share > 0.0 && share < 1.0) {
+    const long left = std::lround(elapsed * (1.0 - share) / share);
+    eta = "  ETA " + (left >= 60 ? std::to_string(left / 60) + " min " : std::string()) +
+          std::to_string(left % 60) + " s ";
+  } else if (share >= 1.0) {
+    eta = "  " + std::to_string(std::lround(elapsed)) + " s\n";
+  }
+  return "\r  [" + std::string(static_cast<std::size_t>(filled), '#') +
+         std::string(static_cast<std::size_t>(width - filled), ' ') + "] " +
+         std::to_string(static_cast<int>(share * 100.0)) + "%" + eta;
+}
+
 double peak_memory_bytes() {
   rusage usage{};
   if (getrusage(RUSAGE_SELF, &usage) != 0) return 0.0;

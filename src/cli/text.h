@@ -49,6 +49,10 @@ double parse_number_in(const std::string& flag, std::string_view text, double lo
 double parse_memory_size(const std::string& flag, std::string_view text);
 // The value of a --max-memory option: kDefaultMaxMemory when not given ("").
 double max_memory_flag(const std::string& text);
+// The progress bar of a render at `share` of its work (in [0, 1]) after `elapsed` seconds, as
+// written to a terminal: "\r  [####    ] 42%", then "  ETA 1 min 3 s " (the time left at the
+// rate so far, rounded to a second) while 0 < share < 1, or "  12 s" and a newline at 1.
+std::string progress_bar_text(double share, double elapsed);
 // The process's peak resident memory so far (bytes; getrusage), for the render report.
 double peak_memory_bytes();
 // The help text of --max-memory.
