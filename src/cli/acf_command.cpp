@@ -23,6 +23,9 @@
 namespace oceanref::cli {
 
 namespace {
+constexpr NumberRange kLengthRange{0.03125, 1024.0, " periods"};
+constexpr NumberRange kAreaRange{1.0, 1e6, " periods"};
+
 struct AcfFlags {
   std::vector<std::string> scenes;
   std::string output, svg, map, direction = "0", length = "8", area = "256", max_memory;
@@ -179,13 +182,16 @@ std::function<void(std::ostream&)> add_acf_command(CLI::App& app) {
   cmd->add_option("--lines", flags->lines, "random start points (default 4000)")
       ->check(integer_in(2, 10'000'000));
   cmd->add_option("--length", flags->length,
-                  "the largest lag in exemplar periods L, the largest cascade size (default 8)");
+                  "the largest lag in exemplar periods L, the largest cascade size (default 8)")
+      ->check(number_in(kLengthRange));
   cmd->add_option("--samples-per-period", flags->samples_per_period, "lags per period (default 32)")
       ->check(integer_in(1, 4096));
   cmd->add_option("--direction-deg", flags->direction,
-                  "the lags' direction from x towards z [degrees] (default 0)");
+                  "the lags' direction from x towards z [degrees] (default 0)")
+      ->check(number_in(kDegreesRange));
   cmd->add_option("--area", flags->area,
-                  "the start points' square, in periods a side, from (0, 0) (default 256)");
+                  "the start points' square, in periods a side, from (0, 0) (default 256)")
+      ->check(number_in(kAreaRange));
   cmd->add_option("--seed", flags->seed, "the start points' seed (default 1)");
   cmd->add_option("--threads", flags->threads,
                   "worker threads (default: all cores); the output is identical for any count")
@@ -195,11 +201,10 @@ std::function<void(std::ostream&)> add_acf_command(CLI::App& app) {
     AutocorrelationSettings settings;
     settings.lines = flags->lines;
     settings.samples_per_period = flags->samples_per_period;
-    settings.length = parse_number_in("--length", flags->length, 0.03125, 1024.0, " periods");
-    settings.area = parse_number_in("--area", flags->area, 1.0, 1e6, " periods");
-    settings.direction =
-        parse_number_in("--direction-deg", flags->direction, -720.0, 720.0, " degrees") *
-        (3.141592653589793 / 180.0);
+    settings.length = parse_number_in("--length", flags->length, kLengthRange);
+    settings.area = parse_number_in("--area", flags->area, kAreaRange);
+    settings.direction = parse_number_in("--direction-deg", flags->direction, kDegreesRange) *
+                         (3.141592653589793 / 180.0);
     settings.seed = flags->seed;
     if (settings.length * settings.samples_per_period > 1e6) {
       throw UsageError("--length", "times --samples-per-period must be at most 1e6 lags");

@@ -14,6 +14,8 @@
 namespace oceanref::cli {
 
 namespace {
+constexpr NumberRange kTurbidityRange{kMinTurbidity, kMaxTurbidity};
+
 struct BrdfFlags {
   std::string view, sun, normal = "0,1,0", sigma2, wind = "0", turbidity = "2.5",
                          sea = "0.0039216,0.0156863,0.0470588", fresnel = "exact", erfc = "exact",
@@ -55,8 +57,11 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
   cmd->add_option("--sigma2", f->sigma2, "sx,sy slope variances upwind and crosswind, in [1e-6, 1]")
       ->required();
   cmd->add_option("--wind-deg", f->wind, "wind direction angle [deg] (upwind tangent)")
-      ->capture_default_str();
-  cmd->add_option("--turbidity", f->turbidity, "turbidity in [2, 10]")->capture_default_str();
+      ->capture_default_str()
+      ->check(number_in(kDegreesRange));
+  cmd->add_option("--turbidity", f->turbidity, "turbidity")
+      ->capture_default_str()
+      ->check(number_in(kTurbidityRange));
   cmd->add_option("--sea-colour", f->sea,
                   "r,g,b sea colour (the demo's 10/255, 40/255, 120/255 x 0.1)")
       ->capture_default_str();
@@ -88,9 +93,8 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
       throw UsageError("--sigma2", "expected sx,sy with each in [1e-6, 1], got '" +
                                        escape_value(f->sigma2) + "'");
     }
-    const double wind = parse_number_in("--wind-deg", f->wind, -720.0, 720.0, " degrees");
-    const double turbidity =
-        parse_number_in("--turbidity", f->turbidity, kMinTurbidity, kMaxTurbidity);
+    const double wind = parse_number_in("--wind-deg", f->wind, kDegreesRange);
+    const double turbidity = parse_number_in("--turbidity", f->turbidity, kTurbidityRange);
     const std::vector<double> sea = parse_number_list("--sea-colour", f->sea, "[0, 1] each");
     if (sea.size() != 3 || sea[0] < 0 || sea[1] < 0 || sea[2] < 0 || sea[0] > 1 || sea[1] > 1 ||
         sea[2] > 1) {

@@ -17,6 +17,8 @@
 namespace oceanref::cli {
 
 namespace {
+constexpr NumberRange kTimeRange{-1e7, 1e7, " s"};
+
 struct FieldsFlags {
   std::string scene, output, at, time, stage, max_memory;
   int threads = 0;
@@ -54,7 +56,8 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
       "one point from the FFT grid and by direct summation (--at).");
   cmd->add_option("SCENE", flags->scene, "scene file (JSON; sections seed, time, waves)")
       ->required();
-  cmd->add_option("--time", flags->time, "time t [s], overrides the scene's time");
+  cmd->add_option("--time", flags->time, "time t [s], overrides the scene's time")
+      ->check(number_in(kTimeRange));
   auto* output = cmd->add_option(
       "-o,--output", flags->output,
       "OUT.exr, one part per cascade i and grid: c<i> (N_h x N_h) and, when low_resolution < "
@@ -94,7 +97,7 @@ std::function<void(std::ostream&)> add_fields_command(CLI::App& app) {
     const int threads = resolve_threads(flags->threads);
     Scene scene = load_scene(flags->scene);
     if (!flags->time.empty()) {
-      scene.time = parse_number_in("--time", flags->time, -1e7, 1e7, " s");
+      scene.time = parse_number_in("--time", flags->time, kTimeRange);
     }
     require_within(fields_memory_estimate(scene), max_memory_flag(flags->max_memory),
                    "--max-memory");

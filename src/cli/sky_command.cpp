@@ -16,6 +16,8 @@ namespace oceanref::cli {
 
 namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
+constexpr NumberRange kZenithRange{0.0, 180.0, " degrees"};
+constexpr NumberRange kTurbidityRange{kMinTurbidity, kMaxTurbidity};
 
 struct SkyFlags {
   std::string zenith, azimuth = "0", turbidity = "2.5", dir, output;
@@ -97,12 +99,16 @@ std::function<void(std::ostream&)> add_sky_command(CLI::App& app) {
       "(--sun), the horizontal sky irradiance (--irradiance) or the hemisphere as EXR (--size, "
       "-o). Radiance in cd/m^2 per linear sRGB (D65) channel.");
   cmd->add_option("--sun-zenith-deg", flags->zenith,
-                  "sun zenith angle [deg] in [0, 180]; above 90 the sun has set (sun radiance 0, "
-                  "sky at its 90-degree limit)")
-      ->required();
+                  "sun zenith angle [deg]; above 90 the sun has set (sun radiance 0, sky at its "
+                  "90-degree limit)")
+      ->required()
+      ->check(number_in(kZenithRange));
   cmd->add_option("--sun-azimuth-deg", flags->azimuth, "sun azimuth [deg], from +X towards +Z")
-      ->capture_default_str();
-  cmd->add_option("--turbidity", flags->turbidity, "turbidity T in [2, 10]")->capture_default_str();
+      ->capture_default_str()
+      ->check(number_in(kDegreesRange));
+  cmd->add_option("--turbidity", flags->turbidity, "turbidity T")
+      ->capture_default_str()
+      ->check(number_in(kTurbidityRange));
   auto* dir = cmd->add_option("--dir", flags->dir,
                               "x,y,z[;x,y,z...] (+Y up) -> CSV x,y,z,Y,chroma_x,chroma_y,R,G,B "
                               "(sky only; below the horizon, y <= 0, its horizon limit)");
@@ -125,12 +131,9 @@ std::function<void(std::ostream&)> add_sky_command(CLI::App& app) {
   irradiance->excludes(size);
   return [flags](std::ostream& out) {
     check_output_paths({{"--output", flags->output}}, {});
-    const double zenith =
-        parse_number_in("--sun-zenith-deg", flags->zenith, 0.0, 180.0, " degrees");
-    const double azimuth =
-        parse_number_in("--sun-azimuth-deg", flags->azimuth, -720.0, 720.0, " degrees");
-    const double turbidity =
-        parse_number_in("--turbidity", flags->turbidity, kMinTurbidity, kMaxTurbidity);
+    const double zenith = parse_number_in("--sun-zenith-deg", flags->zenith, kZenithRange);
+    const double azimuth = parse_number_in("--sun-azimuth-deg", flags->azimuth, kDegreesRange);
+    const double turbidity = parse_number_in("--turbidity", flags->turbidity, kTurbidityRange);
     const Sky sky = make_sky(turbidity, zenith * kDegree, azimuth * kDegree);
     const TransmittanceForm form =
         flags->printed ? TransmittanceForm::printed : TransmittanceForm::physical;

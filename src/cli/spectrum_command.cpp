@@ -65,7 +65,7 @@ SpectrumSettings settings_from(const SpectrumFlags& f) {
   s.depth = parse_number("--depth", f.depth, true, "[0.01, inf] m");
   s.gravity = parse_number("--gravity", f.gravity, false, "[0.1, 100] m/s^2");
   const double direction_deg =
-      parse_number_in("--wind-direction-deg", f.wind_direction, -720.0, 720.0, " degrees");
+      parse_number_in("--wind-direction-deg", f.wind_direction, kDegreesRange);
   s.wind_direction = direction_deg * kDegree;
   if (!f.spreading.empty()) {
     s.spreading = parse_choice<UsageError>(kSpreadingModels, "--spreading", f.spreading);
@@ -220,8 +220,9 @@ std::function<void(std::ostream&)> add_spectrum_command(CLI::App& app) {
                   "blend b in [0, 1]: (1-b) forward cos^2 + b cos-2s (cos-2s family only)")
       ->capture_default_str();
   cmd->add_option("--wind-direction-deg", flags->wind_direction,
-                  "wind direction angle [deg] in [-720, 720]; wind vector (cos, sin) in (x, z)")
-      ->capture_default_str();
+                  "wind direction angle [deg]; wind vector (cos, sin) in (x, z)")
+      ->capture_default_str()
+      ->check(number_in(kDegreesRange));
   cmd->add_option("--dispersion", flags->dispersion,
                   "deep | finite-depth | capillary (default: tma finite-depth, unified "
                   "capillary, others deep)");

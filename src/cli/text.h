@@ -44,6 +44,17 @@ double parse_number(const std::string& flag, std::string_view text, bool allow_i
 // One finite number in [lo, hi] (the message states the range, with `unit` after it).
 double parse_number_in(const std::string& flag, std::string_view text, double lo, double hi,
                        const std::string& unit = "");
+// The range of a number flag kept as text: checked when the command line is parsed (number_in,
+// so that --help states it) and read with it (parse_number_in).
+struct NumberRange {
+  double lo = 0.0, hi = 0.0;
+  const char* unit = "";
+};
+inline constexpr NumberRange kDegreesRange{-720.0, 720.0, " degrees"};  // a direction angle
+inline double parse_number_in(const std::string& flag, std::string_view text,
+                              const NumberRange& r) {
+  return parse_number_in(flag, text, r.lo, r.hi, r.unit);
+}
 // --max-memory: bytes, or a number with a binary suffix K, M, G or T ("512M", "1.5G"), in
 // [kMinMaxMemory, kMaxMaxMemory] (core/memory.h).
 double parse_memory_size(const std::string& flag, std::string_view text);
@@ -69,6 +80,9 @@ long long parse_integer_in(const std::string& flag, std::string_view text, long 
 // '<escaped text>'" (CLI11 prefixes the flag) instead of CLI11's "Could not convert".
 CLI::Validator integer_in(long long lo, long long hi, const std::string& note = "");
 CLI::Validator number_in(double lo, double hi, const std::string& unit = "");
+inline CLI::Validator number_in(const NumberRange& r) {
+  return number_in(r.lo, r.hi, r.unit);
+}
 // Comma-separated finite numbers, at least one (`range`: stated in the message of a bad one).
 std::vector<double> parse_number_list(const std::string& flag, std::string_view text,
                                       const std::string& range = "");
