@@ -11,6 +11,8 @@
 #include <string>
 #include <utility>
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include "core/check.h"
 #include "core/format.h"
 #include "core/fp_environment.h"
@@ -84,8 +86,8 @@ TracedSurface surface_view(const Geometry& g) {
   s.base = &g.grid.base;
   s.corners = &g.surface_corners;
   const DisplacedSurfaceBounds& b = g.surface_bounds;
-  s.lipschitz = glm::dvec3(b.lipschitz[0], b.lipschitz[1], b.lipschitz[2]);
-  s.offset = glm::dvec3(b.offset[0], b.offset[1], b.offset[2]);
+  s.lipschitz = glm::make_vec3(b.lipschitz.data());  // (x, y, z) in order
+  s.offset = glm::make_vec3(b.offset.data());
   return s;
 }
 
