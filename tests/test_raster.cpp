@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "raster/camera.h"
@@ -110,6 +112,40 @@ TEST_CASE("rasterizer: row bands give the fragments of one full pass, whatever t
       CHECK(banded[i].weights == whole[i].weights);
     }
   }
+}
+
+TEST_CASE("rasterizer: a triangle's sample rows, none unless strictly in front of the near plane") {
+  // Rows [⌈min y·S − ½⌉, ⌊max y·S − ½⌋ + 1): the samples whose centres (r + ½)/S lie in [min y,
+  // max y]. A corner on the near plane or behind it (or a NaN depth), or an x or y not finite:
+  // no rows, and rasterize culls such a triangle.
+  const SampleGrid grid{8, 6, 2};
+  const double near = 0.5;
+  const ScreenVertex a{1.0, 1.25, 2.0}, b{6.0, 3.0, 2.0}, c{2.0, 4.75, 2.0};
+  CHECK(sample_rows_of(a, b, c, grid, near) == std::pair{2.0, 10.0});  // 1.25·2 − ½ → 2; 9 + 1
+  const ScreenVertex on_plane{c.x, c.y, near};
+  const ScreenVertex just_in_front{c.x, c.y, std::nextafter(near, 1.0)};
+  for (const auto& rows :
+       {sample_rows_of(a, b, on_plane, grid, near), sample_rows_of(on_plane, a, b, grid, near),
+        sample_rows_of(a, on_plane, b, grid, near)}) {
+    CHECK(rows.first >= rows.second);
+  }
+  CHECK(sample_rows_of(a, b, just_in_front, grid, near) == std::pair{2.0, 10.0});
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (const ScreenVertex& bad :
+       {ScreenVertex{1.0, kNaN, 2.0}, ScreenVertex{kNaN, 1.0, 2.0}, ScreenVertex{1.0, 1.0, kNaN},
+        ScreenVertex{1.0, kInf, 2.0}, ScreenVertex{-kInf, 1.0, 2.0}}) {
+    const auto none = sample_rows_of(a, b, bad, grid, near);
+    CHECK_FALSE(none.first < none.second);
+  }
+  // And rasterize agrees: the triangle with a corner on the plane writes no fragment.
+  std::vector<Fragment> fragments(static_cast<std::size_t>(grid.columns() * grid.rows()));
+  rasterize({a, b, on_plane}, {{0, 1, 2}}, grid, 0, grid.rows(), near, fragments);
+  CHECK(std::all_of(fragments.begin(), fragments.end(),
+                    [](const Fragment& f) { return f.triangle < 0; }));
+  rasterize({a, b, just_in_front}, {{0, 1, 2}}, grid, 0, grid.rows(), near, fragments);
+  CHECK(std::any_of(fragments.begin(), fragments.end(),
+                    [](const Fragment& f) { return f.triangle == 0; }));
 }
 
 TEST_CASE("rasterizer: watertight fan and grid, every sample exactly once") {

@@ -173,10 +173,13 @@ std::pair<double, double> sample_rows_of(const ScreenVertex& a, const ScreenVert
                                          const ScreenVertex& c, const SampleGrid& grid,
                                          double near) {
   if (!(a.z > near && b.z > near && c.z > near)) return {0.0, 0.0};
+  for (const ScreenVertex& v : {a, b, c}) {
+    if (!(std::isfinite(v.x) && std::isfinite(v.y))) return {0.0, 0.0};
+  }
   const int s = grid.samples_per_axis;
   const double lowest = std::ceil(std::min({a.y, b.y, c.y}) * s - 0.5);
   const double highest = std::floor(std::max({a.y, b.y, c.y}) * s - 0.5) + 1.0;
-  if (!(highest > lowest)) return {0.0, 0.0};  // NaN too
+  if (!(highest > lowest)) return {0.0, 0.0};
   return {lowest, highest};
 }
 

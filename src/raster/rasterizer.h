@@ -69,8 +69,9 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
                int last_row, double near, std::vector<Fragment>& fragments, int fragment_row = 0,
                FragmentColumns window = {});
 
-// The sample rows [first, last) a triangle can cover (first ≥ last when none: behind the near
-// plane, or not finite); rasterize writes no sample outside them.
+// The sample rows [first, last) a triangle can cover (first ≥ last when none: a corner on or
+// behind the near plane, its depth NaN, or its x or y not finite); rasterize writes no sample
+// outside them.
 std::pair<double, double> sample_rows_of(const ScreenVertex& a, const ScreenVertex& b,
                                          const ScreenVertex& c, const SampleGrid& grid,
                                          double near);
