@@ -261,6 +261,56 @@ TEST_CASE("footprint: the screen-space derivatives of x0 against finite differen
   CHECK(base_derivatives(flat, base, {1.0 / 3, 1.0 / 3, 1.0 / 3}).along_x == glm::dvec2{0.0});
 }
 
+TEST_CASE("footprint: a grid vertex's and a sample's cell as the covariance of its parallelogram") {
+  // The covariance of x = a·e_u + b·e_v, a and b uniform on [−½, ½], by the two-point Gauss rule
+  // in a and b (exact for this quadratic): nodes ±1/(2√3), weights ½.
+  const auto covariance = [](glm::dvec2 eu, glm::dvec2 ev) {
+    const double n = 0.5 / std::sqrt(3.0);
+    double xx = 0.0, xz = 0.0, zz = 0.0;
+    for (const double a : {-n, n}) {
+      for (const double b : {-n, n}) {
+        const glm::dvec2 x = a * eu + b * ev;
+        xx += 0.25 * x.x * x.x;
+        xz += 0.25 * x.x * x.y;
+        zz += 0.25 * x.y * x.y;
+      }
+    }
+    return Footprint{xx, xz, zz};
+  };
+  const auto same = [](const Footprint& got, const Footprint& want) {
+    CHECK(got.xx == doctest::Approx(want.xx).epsilon(1e-12));
+    CHECK(got.xz == doctest::Approx(want.xz).epsilon(1e-12));
+    CHECK(got.zz == doctest::Approx(want.zz).epsilon(1e-12));
+  };
+  // A curved grid of 4 × 3 vertices: base(i, j) = (i² + 0.5 j, 2i + 3j² + 0.25 ij).
+  ProjectedGrid grid;
+  grid.visible = true;
+  grid.columns = 4;
+  grid.rows = 3;
+  const auto base = [](int i, int j) {
+    return glm::dvec2{i * i + 0.5 * j, 2.0 * i + 3.0 * j * j + 0.25 * i * j};
+  };
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 4; ++i) grid.base.push_back(base(i, j));
+  }
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      CAPTURE(i);
+      CAPTURE(j);
+      // Central differences inside, one-sided at the border.
+      const int l = std::max(i - 1, 0), r = std::min(i + 1, 3);
+      const int u = std::max(j - 1, 0), d = std::min(j + 1, 2);
+      const glm::dvec2 eu = (base(r, j) - base(l, j)) / double(r - l);
+      const glm::dvec2 ev = (base(i, d) - base(i, u)) / double(d - u);
+      same(grid_vertex_footprint(grid, i, j), covariance(eu, ev));
+    }
+  }
+  // A sample's cell of side c pixels mapped by the screen derivatives (not axis-aligned).
+  const BaseDerivatives derivatives{{2.0, 0.7}, {-0.4, 3.0}};
+  same(sample_footprint(derivatives, 0.5),
+       covariance(0.5 * derivatives.along_x, 0.5 * derivatives.along_y));
+}
+
 TEST_CASE("footprint filtering: the setting changes the pixels, not with the thread count") {
   const RenderedScene plain = render_with(default_scene_reduced(1, false), 2);
   const RenderedScene one = render_with(default_scene_reduced(1, true), 1);
