@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -372,13 +373,9 @@ auto choice(const Section& s, const char* key, const Table& table, const std::st
   return parse_choice<SceneError>(table, s.where(key), s.text(key, fallback));
 }
 
-bool is_power_of_two(int n) {
-  return n > 0 && (n & (n - 1)) == 0;
-}
-
 int resolution(const Section& s, const char* key, int fallback, int hi) {
   const int n = s.integer(key, fallback, 4, hi);
-  if (!is_power_of_two(n)) {
+  if (!std::has_single_bit(static_cast<unsigned>(n))) {
     throw SceneError(s.where(key), "must be a power of two in [4, " + std::to_string(hi) +
                                        "], got " + std::to_string(n));
   }
