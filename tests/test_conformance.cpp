@@ -284,6 +284,17 @@ TEST_CASE("compare: parts are matched by name and level") {
   missing.name = "c7";
   CHECK_THROWS_WITH_AS(compare_parts(golden, {missing, a}, {}, uniform_profile({})),
                        doctest::Contains("'c7'"), std::invalid_argument);
+  // A rip-map level (x 2, y 1) is matched as such and reported as [x, y] in the JSON.
+  ExrPart rip = b;
+  rip.level_x = 2;
+  rip.level_y = 1;
+  const Comparison at_level = compare_parts({a, rip}, {rip}, {}, uniform_profile({}));
+  REQUIRE(at_level.parts.size() == 1);
+  CHECK(at_level.parts[0].level_x == 2);
+  CHECK(at_level.parts[0].level_y == 1);
+  const nlohmann::json j = nlohmann::json::parse(comparison_json(at_level, "g.exr", "c.exr"));
+  CHECK(j["parts"][0]["level"] == nlohmann::json::array({2, 1}));
+  CHECK(j["parts"][0]["name"] == "c1");
 }
 
 TEST_CASE("compare: profiles give per-channel thresholds; --suggest derives them") {

@@ -237,3 +237,23 @@ TEST_CASE("pieces of a render with Mastin's anti-aliasing keep its count of anti
   CHECK(merged.antialiased_pixels == whole.image.antialiased_pixels);
   CHECK(same_bits(merged.radiance, whole.image.radiance));
 }
+
+TEST_CASE("merge: the image's counters are the sums of its pieces' counters") {
+  // Each counter of each piece set to its own value (a fast render has no lighting evaluations
+  // or unconverged samples to sum): the merged image carries the three sums.
+  const Scene scene = piece_scene();
+  std::vector<RenderPiece> pieces;
+  for (int i = 0; i < 3; ++i) {
+    RenderPiece p = piece_of(scene, i, 3, false);
+    p.band.unconverged_samples = 1 + i;
+    p.band.integrand_evaluations = 100 * (1 + i);
+    p.band.capped_pixels = 10 * (1 + i);
+    p.band.antialiased_pixels = 1000 * (1 + i);
+    pieces.push_back(p);
+  }
+  const RenderedImage merged = merge_render_pieces(scene, pieces, {"a", "b", "c"});
+  CHECK(merged.unconverged_samples == 6);
+  CHECK(merged.integrand_evaluations == 600);
+  CHECK(merged.capped_pixels == 60);
+  CHECK(merged.antialiased_pixels == 6000);
+}
