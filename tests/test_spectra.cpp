@@ -462,3 +462,22 @@ TEST_CASE("spectrum settings: one that does not apply to the model is refused un
   short_fetch.allow_extrapolation = true;
   CHECK(make_spectrum(short_fetch).unified.inverse_wave_age == 5.0);
 }
+
+TEST_CASE("Unified: the long-wave shape L_PM and the peak enhancement J_p at known points") {
+  // L_PM = exp(−5/4 (k_p/k)²): e^{−5/4} at the peak, e^{−5} at half of it, → 1 far above it.
+  CHECK(pierson_moskowitz_shape(0.1, 0.1) == doctest::Approx(std::exp(-1.25)).epsilon(1e-15));
+  CHECK(pierson_moskowitz_shape(0.05, 0.1) == doctest::Approx(std::exp(-5.0)).epsilon(1e-15));
+  CHECK(pierson_moskowitz_shape(100.0, 0.1) == doctest::Approx(1.0).epsilon(1e-5));
+  CHECK(pierson_moskowitz_shape(0.0, 0.1) == 0.0);
+  // J_p = γ^Γ, Γ = exp(−(√(k/k_p) − 1)²/(2σ²)) (Gamper §3.4): γ at the peak; γ^{e^{−1/2}} where
+  // √(k/k_p) is one σ above or below 1; → 1 far from the peak.
+  const double kp = 0.2, gamma = 2.7, sigma = 0.08;
+  CHECK(unified_peak_enhancement(kp, kp, gamma, sigma) == doctest::Approx(gamma).epsilon(1e-15));
+  for (const double root : {1.0 + sigma, 1.0 - sigma}) {
+    CAPTURE(root);
+    CHECK(unified_peak_enhancement(kp * root * root, kp, gamma, sigma) ==
+          doctest::Approx(std::pow(gamma, std::exp(-0.5))).epsilon(1e-14));
+  }
+  CHECK(unified_peak_enhancement(9.0 * kp, kp, gamma, sigma) ==
+        doctest::Approx(1.0).epsilon(1e-15));
+}
