@@ -98,6 +98,18 @@ TEST_CASE("surface tracer: a flat sea, hits by hand") {
   CHECK(hit.x0.y == doctest::Approx(2.5).epsilon(1e-14));
   CHECK(hit.cell == 1 * 4 + 0);
   CHECK(hit.refined);
+  // On the domain's edges (s = 0 of the first column, t = 0 of the first row, no neighbouring
+  // cell to take the hit): still refined, at the edge.
+  for (const glm::dvec2 edge :
+       {glm::dvec2{0.0, 2.5}, glm::dvec2{1.25, 0.0}, glm::dvec2{0.0, 0.0}}) {
+    CAPTURE(edge.x);
+    CAPTURE(edge.y);
+    hit = trace_surface(s.view, s.tree, settings, {edge.x, 10.0, edge.y}, {0.0, -1.0, 0.0});
+    REQUIRE(hit.hit);
+    CHECK(hit.refined);
+    CHECK(hit.x0 == edge);
+    CHECK(hit.t == 10.0);
+  }
   // A grazing ray (1 m down over 1 km) still meets the plane exactly where it should.
   const glm::dvec3 along{0.003, -0.001, 1.0};
   const glm::dvec3 grazing = glm::normalize(along);
