@@ -115,6 +115,25 @@ TEST_CASE("footprint filter: a mode folds to the half-plane of directions [0, π
   }
 }
 
+TEST_CASE("footprint filter: the radii double from a quarter of the finest spacing to the size") {
+  // One cascade of 100 m on 32²: r_1 = 100/32/4 = 0.78125 m, r_l = r_1·2^{l−1}; the last level
+  // is the first with r_L ≥ 100 m, here exactly 100 m (r_8).
+  WaveSettings w;
+  w.seed = 3;
+  w.sizes = {100.0};
+  w.resolution = 32;
+  w.low_resolution = 32;
+  w.choppiness = {-0.5};
+  const Ocean ocean = realize_ocean(w, 1);
+  const FootprintFilter f =
+      make_footprint_filter(ocean, 0.0, Interpolation::bicubic, ShadingNormals::surface, false, 2);
+  REQUIRE(f.radii.size() == 9);
+  CHECK(f.radii[0] == 0.0);
+  for (std::size_t l = 1; l < f.radii.size(); ++l)
+    CHECK(f.radii[l] == std::ldexp(0.78125, int(l) - 1));
+  CHECK(f.radii.back() == 100.0);
+}
+
 TEST_CASE("footprint filter: every level is the Gaussian-filtered spectrum, summed exactly") {
   const Ocean ocean = realize_ocean(small_waves(), 1);
   const double time = 1.7;

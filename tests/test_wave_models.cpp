@@ -72,6 +72,17 @@ TEST_CASE("gerstner ocean: the slope budget counts the set and what it leaves to
   const GerstnerWaves& g = *ocean.gerstner;
   const SlopeVariance set = gerstner_slope_variance(g, ocean.spectrum.wind_direction);
   CHECK(b.resolved.upwind == set.upwind);
+  // The set's own: the mean square of each wave's slope k A sin ψ along and across the wind,
+  // ½ A² k² cos²(θ − φ) and ½ A² k² sin²(θ − φ), summed.
+  double upwind = 0.0, crosswind = 0.0;
+  for (const GerstnerWave& w : g.waves) {
+    const double power = 0.5 * w.amplitude * w.amplitude * w.wavenumber * w.wavenumber;
+    upwind += power * std::pow(std::cos(w.direction - ocean.spectrum.wind_direction), 2);
+    crosswind += power * std::pow(std::sin(w.direction - ocean.spectrum.wind_direction), 2);
+  }
+  CHECK(set.upwind == doctest::Approx(upwind).epsilon(1e-12));
+  CHECK(set.crosswind == doctest::Approx(crosswind).epsilon(1e-12));
+  CHECK(set.crosswind > 0.1 * set.upwind);  // the set spreads across the wind too
   // unresolved = the spectrum above k_max + the draw's deficit in its band [k_min, k_max]:
   // (above + band − set); the band's own quadrature to 1e-8 relative.
   const SlopeVariance band =
