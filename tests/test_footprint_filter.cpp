@@ -134,6 +134,34 @@ TEST_CASE("footprint filter: the radii double from a quarter of the finest spaci
   CHECK(f.radii.back() == 100.0);
 }
 
+TEST_CASE("footprint filter: a footprint on the table's nodes reads that node, in the wind frame") {
+  // The documented layout (footprint_filter.h): node (r, q, j) holds λ₁ = r_1²·2^{r−6} (√λ₁ from
+  // r_1/8 in ½ octaves), λ₂ = λ₁·4^{q−8} (log2 √(λ₂/λ₁) = q − 8) and the major axis at πj/16 from
+  // the wind, at values[(r·9 + q)·16 + j]. A world footprint with those axes, turned by the wind
+  // φ, reads that node alone (trilinear weights 0 or 1, to rounding).
+  WaveSettings waves = small_waves();
+  waves.spectrum.wind_direction = 0.7;
+  const Ocean ocean = realize_ocean(waves, 1);
+  const FootprintFilter f =
+      make_footprint_filter(ocean, 0.4, Interpolation::bicubic, ShadingNormals::surface, false, 1);
+  const double r1_squared = f.radii[1] * f.radii[1];
+  for (const auto& [r, q, j] :
+       {std::array{8, 4, 0}, std::array{8, 4, 3}, std::array{10, 2, 11}, std::array{5, 6, 7}}) {
+    CAPTURE(r);
+    CAPTURE(q);
+    CAPTURE(j);
+    const double major = std::ldexp(r1_squared, r - 6), minor = std::ldexp(major, 2 * (q - 8));
+    const double angle = 0.7 + std::numbers::pi * j / 16.0;
+    const double c = std::cos(angle), s = std::sin(angle);
+    const Footprint fp{major * c * c + minor * s * s, (major - minor) * c * s,
+                       major * s * s + minor * c * c};
+    const SlopeVariance node = f.variance.values[static_cast<std::size_t>((r * 9 + q) * 16 + j)];
+    const SlopeVariance read = footprint_slope_variance(f, fp);
+    CHECK(read.upwind == doctest::Approx(node.upwind).epsilon(1e-6));
+    CHECK(read.crosswind == doctest::Approx(node.crosswind).epsilon(1e-6));
+  }
+}
+
 TEST_CASE("footprint filter: every level is the Gaussian-filtered spectrum, summed exactly") {
   const Ocean ocean = realize_ocean(small_waves(), 1);
   const double time = 1.7;
@@ -180,8 +208,8 @@ TEST_CASE("footprint filter: V from the table against the sum over every mode, a
     const SlopeVariance none = footprint_slope_variance(f, Footprint{});
     CHECK(none.upwind == 0.0);
     CHECK(none.crosswind == 0.0);
-    // An unbounded footprint: every slope of the shaded patterns, Σ|h|²(k·ê)² — the slope budget's
-    // discrete variance.
+    // An unbounded footprint: every slope of the shaded patterns, Σ|h|²(k·ê)² — the slope
+    // budget's discrete variance.
     const SlopeVarianceBudget budget =
         slope_variance_budget(ocean, 0.0173, time, Interpolation::bicubic, normals);
     const Footprint huge{1e8, 0.0, 1e8};
