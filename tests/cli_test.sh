@@ -949,6 +949,11 @@ checks=$((checks + 1))
 awk -F, 'NR > 1 && !($3 >= 0 && $3 < 10 && $5 >= 0) { exit 1 }' "$tmp/out" ||
   fail "bench lean: errors out of range: $(cat "$tmp/out")"
 expect 2 '--footprint-sizes: each must be in \(0, 1e6\] m, got 0' bench lean --scene "$tmp/acf_tiled.json" --footprint-sizes 0
+# The range's closed end is accepted, just beyond it refused.
+expect 0 '^lean,1000000,' bench lean --scene "$tmp/acf_tiled.json" --footprints 2 --samples 8 \
+  --footprint-sizes 1e6
+expect 2 '--footprint-sizes: each must be in \(0, 1e6\] m, got 1000000.0000000001$' bench lean \
+  --scene "$tmp/acf_tiled.json" --footprint-sizes 1000000.0000000001
 expect 2 '--samples' bench lean --scene "$tmp/acf_tiled.json" --samples 1
 
 # --- determinism: identical bytes across runs -------------------------------------------------

@@ -1514,7 +1514,8 @@ def acf_plot(single, tmp):
     name beside the plot, one entry under the other."""
     import xml.etree.ElementTree as ET
     paths = []
-    for name, seed in (("calm_one", 1), ("calm<two>", 2)):
+    # (20 characters: the legend's room, 152 px right of the swatches at 11 px type.)
+    for name, seed in (("calm_one_with_a_name", 1), ("calm<two>", 2)):
         scene = json.loads(json.dumps(single))
         scene["seed"] = seed
         scene["shading"]["interpolation"] = "direct"  # the map's heights: direct sums
@@ -1594,8 +1595,12 @@ def acf_plot(single, tmp):
         check(right < l["x1"] and l["x2"] - l["x1"] >= 15,
               f"acf --svg: the legend line of {t[0]} runs from {l['x1']} to {l['x2']}")
     check(len(legend) == 2 and legend[1]["y1"] - legend[0]["y1"] >= 11 and
-          float(svg.get("width")) > labels[-1][1] and float(svg.get("height")) > legend[-1]["y1"],
+          float(svg.get("height")) > legend[-1]["y1"],
           f"acf --svg: legend entries overlap or leave the image {legend}")
+    # Each name inside the image, at 0.6 em (6.6 px) per character of 11 px sans-serif.
+    for t in labels:
+        check(t[1] + 6.6 * len(t[0]) <= float(svg.get("width")),
+              f"acf --svg: the legend name {t[0]} runs past the image's right edge from x {t[1]}")
     # --map: the scenes' heights side by side (16 pixels over 4 x 4 periods of 64 m each, 8 grey
     # pixels apart), grey = 1/2 + eta/(6 sigma), z upwards. The heights of the first scene at its
     # first period's pixel centres come from `fields --at` (direct sums, as the map's scene

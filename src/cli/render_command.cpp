@@ -221,18 +221,18 @@ void render_sequence(std::ostream& out, const Scene& scene, const RenderOutputOp
 }
 
 // Runs `argv` (argv[0] looked up on PATH) without a shell, so that no character of a path or
-// an option is interpreted; its exit status, or -1 when it could not be started.
-int run_program(const std::vector<std::string>& argv) {
+// an option is interpreted: whether it started and exited with status 0.
+bool run_program(const std::vector<std::string>& argv) {
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   pid_t pid = 0;
-  if (posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return -1;
+  if (posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return false;
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return -1;
+    if (errno != EINTR) return false;
   }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
 // `render --video`: the previews of frames [first, last] assembled by ffmpeg into `video`,
@@ -263,7 +263,7 @@ void assemble_video(const std::string& png, std::pair<int, int> frames, double f
                                          "pad=ceil(iw/2)*2:ceil(ih/2)*2",
                                          temporary.string()};
   log_progress("assembling " + video + " with ffmpeg");
-  if (run_program(command) != 0) {
+  if (!run_program(command)) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
     std::string words;
