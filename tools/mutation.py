@@ -422,8 +422,8 @@ def record_coverage(tree, work, jobs_of, parallel):
     """Runs every test job once in a coverage build of the tree (WORK/coverage/build, the
     mutation build's flags plus --coverage and OCEANREF_GCOV_DUMP), each job's processes writing
     their counters under WORK/coverage/data/JOB (GCOV_PREFIX). Returns (the jobs' seconds and exit
-    codes: the baseline, {src file: {"code": lines with code, "jobs": {job: lines executed}}}) —
-    or exits if a job fails."""
+    codes: the baseline, read_coverage's {src file: {"code", "functions", "jobs"}}) — or exits if
+    a job fails."""
     cov = os.path.join(work, "coverage")
     build = os.path.join(cov, "build")
     # OCEANREF_GCOV_DUMP: a process ended by SIGINT, SIGTERM or SIGHUP (the tests of Ctrl-C and
