@@ -145,8 +145,10 @@ TEST_CASE("footprint filter: a footprint on the table's nodes reads that node, i
   const FootprintFilter f =
       make_footprint_filter(ocean, 0.4, Interpolation::bicubic, ShadingNormals::surface, false, 1);
   const double r1_squared = f.radii[1] * f.radii[1];
-  for (const auto& [r, q, j] :
+  for (const std::array<int, 3>& node_index :
        {std::array{8, 4, 0}, std::array{8, 4, 3}, std::array{10, 2, 11}, std::array{5, 6, 7}}) {
+    // Named copies: clang 14 does not let CAPTURE's lambda see structured bindings.
+    const int r = node_index[0], q = node_index[1], j = node_index[2];
     CAPTURE(r);
     CAPTURE(q);
     CAPTURE(j);

@@ -286,12 +286,13 @@ TEST_CASE("foam: \"steady\" steps make the accumulation independent of where it 
           "render": {"footprint_filtering": true}})");
   CHECK_THROWS_WITH_AS(parse_scene(filtered), doctest::Contains("waves.foam.steps: accumulated"),
                        SceneError);
-  for (const auto& [key, off] : {std::pair{"/waves/foam/steps", nlohmann::json(0)},
-                                 std::pair{"/shading/whitecaps", nlohmann::json(false)},
-                                 std::pair{"/render/footprint_filtering", nlohmann::json(false)}}) {
+  for (const auto& setting : {std::pair{"/waves/foam/steps", nlohmann::json(0)},
+                              std::pair{"/shading/whitecaps", nlohmann::json(false)},
+                              std::pair{"/render/footprint_filtering", nlohmann::json(false)}}) {
+    const std::string key = setting.first;
     CAPTURE(key);
     nlohmann::json accepted = filtered;
-    accepted[nlohmann::json::json_pointer(key)] = off;
+    accepted[nlohmann::json::json_pointer(key)] = setting.second;
     CHECK_NOTHROW(parse_scene(accepted));
   }
 }
