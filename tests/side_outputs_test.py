@@ -213,6 +213,17 @@ with tempfile.TemporaryDirectory() as tmp:
         per_sample = 1.0 / n
         hits = [s for s in samples if s["hit"] == "1"]
         kinds.add("sky" if not hits else "sea" if len(hits) == n else "horizon")
+        # Each sample's error columns: the lighting error is the sum of the three terms' errors,
+        # scaled by the whitecaps' share 1 - W (the foam is not integrated, so has no error),
+        # exactly as the renderer combines them (the same operations in the same order).
+        for s in samples:
+            for c in "RGB":
+                terms = float(s[f"sun_error_{c}"]) + float(s[f"sky_error_{c}"]) + \
+                    float(s[f"sea_error_{c}"])
+                combined = terms * (1.0 - float(s["foam_coverage"]))
+                check(combined == float(s[f"error_{c}"]),
+                      f"probe {x},{y} sample {s['sample']}: error_{c} {s[f'error_{c}']} is not "
+                      f"(sun + sky + sea error) x (1 - W) = {combined!r}")
 
         def layer_sum(column):
             total = 0.0

@@ -286,3 +286,33 @@ TEST_CASE("output file: a committed file gives back its own signal slot, no othe
   CHECK(contents(dir / "other.exr") == "a whole file");
   CHECK_FALSE(fs::exists(dir / "writing.exr"));
 }
+
+TEST_CASE("output file: a file written when every signal slot is taken releases no other's slot") {
+  // 64 files at once, more than the handler's slots (16): the first ones hold the slots, the
+  // rest are written without removal on a signal. Committing and closing those must leave the
+  // slots of the first ones in place, so a signal still removes every temporary left.
+  const TempFolder dir;
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    remove_output_temporaries_on_signals();
+    std::vector<std::optional<OutputFile>> files(64);
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      files[i].emplace(dir / ("file" + std::to_string(i)));
+      files[i]->write("half of a file");
+    }
+    for (std::size_t i = 32; i < files.size(); ++i) {
+      files[i]->commit();
+      files[i].reset();
+    }
+    std::raise(SIGTERM);
+    ::_exit(0);  // not reached
+  }
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  CHECK(WIFSIGNALED(status));
+  // The 32 committed files are there; the temporaries of the 16 files with slots are gone. The
+  // 16 without a slot (files 16-31, neither committed nor removed) leave their temporaries.
+  for (int i = 0; i < 64; ++i) CHECK(fs::exists(dir / ("file" + std::to_string(i))) == (i >= 32));
+  CHECK(dir.temporaries() == 16);
+}
