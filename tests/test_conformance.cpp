@@ -71,6 +71,19 @@ TEST_CASE("compare: ULP distance and the metrics of a known difference") {
   CHECK(ch.relative_percentiles[4] == 0.125);
   CHECK(ch.histogram.zero == 3);
   CHECK(ch.histogram.decades[static_cast<std::size_t>(-1 - kHistogramFirstDecade)] == 1);
+  // The JSON's bin edges 10^-12 … 10^2, one more than the bins, bracket the pixel's bin.
+  const nlohmann::json j = nlohmann::json::parse(comparison_json(r, "g.exr", "c.exr"));
+  const std::vector<double> edges = j["histogram_edges"];
+  const std::vector<std::size_t> bins = j["parts"][0]["channels"][0]["histogram"]["decades"];
+  REQUIRE(edges.size() == bins.size() + 1);
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    CHECK(edges[k] == doctest::Approx(std::pow(10.0, kHistogramFirstDecade + static_cast<int>(k)))
+                          .epsilon(1e-14));
+  }
+  const auto bin = static_cast<std::size_t>(std::find(bins.begin(), bins.end(), 1) - bins.begin());
+  REQUIRE(bin < bins.size());
+  CHECK(edges[bin] <= 0.125);
+  CHECK(0.125 < edges[bin + 1]);
   // The thresholds: A alone, R alone (relative to |g| = 4: 0.5 ≤ 0.125·4), S.
   CHECK(run(g, c, {0.5, 0.0, 0.0, 0, 0.0}).pass);
   CHECK_FALSE(run(g, c, {0.49, 0.0, 0.0, 0, 0.0}).pass);

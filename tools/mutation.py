@@ -508,28 +508,41 @@ def read_coverage(tree, build, jobs, parallel):
     return files
 
 
-def jobs_reaching(coverage, compile_time, site):
+def counter_dump_lines(text):
+    """The lines of one file that call __gcov_dump() (the signal handler of io/output_file.cpp
+    in the coverage build): the lines after such a call in its function run, but their counters
+    are never written."""
+    return [n for n, line in enumerate(text.split("\n"), 1)
+            if re.search(r"\b__gcov_dump\(\);", line) and "void" not in line]
+
+
+def jobs_reaching(coverage, compile_time, dumps, site):
     """The names of the jobs that execute the mutant's lines (none: no test executes them), or
     None (run every job) when coverage cannot tell. A line without counters of its own inside a
     function (code the optimiser merged into a neighbour's, a declaration) counts as executed by
     every job that executes any line of the innermost function around it: it runs only once
     that function is entered. Every job runs for a line outside any function (a table, a
     constant), inside a constexpr function (the compiler may evaluate it), or executed by a
-    process no job's counters caught."""
+    process no job's counters caught. A line after a counter dump (counter_dump_lines) in the
+    same function counts as executed by the jobs that execute the dump."""
     lines = set(range(site["line"], site["line"] + site["old"].count("\n") + 1))
     entry = coverage.get(site["file"])
     if entry is None or lines & compile_time.get(site["file"], set()):
         return None
     reached = set()
     for line in lines:
-        if line in entry["code"]:
-            reached.add(line)
-            continue
         around = [f for f in entry["functions"] if f[0] <= line <= f[1]]
-        if not around:
+        innermost = min(around, key=lambda f: f[1] - f[0]) if around else None
+        dumped = [d for d in dumps.get(site["file"], [])
+                  if innermost and innermost[0] <= d < line]
+        if dumped:
+            reached.add(max(dumped))
+        elif line in entry["code"]:
+            reached.add(line)
+        elif innermost is None:
             return None
-        first, last = min(around, key=lambda f: f[1] - f[0])
-        reached.update(range(first, last + 1))
+        else:
+            reached.update(range(innermost[0], innermost[1] + 1))
     names = {job for job, executed in entry["jobs"].items() if reached & executed}
     return None if UNATTRIBUTED in names else names
 
@@ -719,7 +732,9 @@ def main():
     coverage = {f: dict(code=set(e["code"]), functions={tuple(r) for r in e["functions"]},
                         jobs={j: set(lines) for j, lines in e["jobs"].items()})
                 for f, e in cache["files"].items()}
-    compile_time = {f: compile_time_lines(open(os.path.join(tree, f)).read()) for f in coverage}
+    texts = {f: open(os.path.join(tree, f)).read() for f in coverage}
+    compile_time = {f: compile_time_lines(text) for f, text in texts.items()}
+    dumps = {f: counter_dump_lines(text) for f, text in texts.items()}
     if args.uncovered:
         print(uncovered_report(coverage, tree, os.path.join(work, "uncovered.txt")))
         return
@@ -761,7 +776,7 @@ def main():
                 result["build_seconds"] = time.time() - t0
                 # Only the jobs that execute the mutated line (all if coverage cannot tell);
                 # those that killed mutants of this file, of this folder, of any, first.
-                reach = None if args.all_jobs else jobs_reaching(coverage, compile_time, s)
+                reach = None if args.all_jobs else jobs_reaching(coverage, compile_time, dumps, s)
                 ordered = sorted((j for j in jobs if reach is None or j["name"] in reach),
                                  key=lambda j: (-kills_by_file[s["file"]][j["name"]],
                                                 -kills_by_folder[folder][j["name"]],
