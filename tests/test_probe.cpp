@@ -5,6 +5,7 @@
 // corners, a horizon pixel (part sea, part sky), open sea and sky.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -67,4 +68,30 @@ TEST_CASE("probe == render: every probed pixel has the bits render writes") {
   CHECK(horizon >= 1);
   CHECK(sea >= 2);
   CHECK(sky >= 2);
+}
+
+TEST_CASE("probe: without choppiness a sea sample's position lies above its undisplaced x0") {
+  // position interpolates the displaced grid vertices, x0 the same vertices before displacement,
+  // with the same weights: without choppiness (no horizontal displacement) their x and z are
+  // the same numbers (a point reflected through the origin, or another vertex's, would not be).
+  Scene scene =
+      load_scene(std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/default.json", nullptr);
+  scene.image.width = 24;
+  scene.image.height = 14;
+  scene.grid.columns = 128;
+  scene.grid.rows = 128;
+  scene.image.samples_per_axis = 2;
+  for (double& u : scene.waves.choppiness) u = 0.0;
+  const auto prepared = prepare_render(scene, 2);
+  int samples = 0;
+  for (const auto& [x, y] : {std::pair{0, 13}, std::pair{12, 12}, std::pair{23, 9}}) {
+    for (const SampleProbe& p : probe_pixel(prepared->job, prepared->unresolved, x, y)) {
+      REQUIRE(p.hit);
+      CHECK(std::hypot(p.x0.x, p.x0.y) > 1.0);  // away from the origin, where -x0 = x0
+      CHECK(p.position.x == p.x0.x);
+      CHECK(p.position.z == p.x0.y);
+      ++samples;
+    }
+  }
+  CHECK(samples == 12);
 }
