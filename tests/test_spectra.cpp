@@ -400,6 +400,21 @@ TEST_CASE("spectrum settings: the library refuses each field outside its range, 
   }
 }
 
+TEST_CASE("spectrum settings: JONSWAP beyond its fitted fetch is refused, the limit stated") {
+  // Gamper eq. 3.52: gF/U10² < 1e4, i.e. F < 1e4·U10²/g = 1e4·12²/9.81 = 146788.99 m at 12 m/s.
+  SpectrumSettings in;
+  in.model = SpectrumModel::jonswap;
+  in.wind_speed = 12.0;
+  in.fetch = 146788.0;
+  CHECK_NOTHROW(make_spectrum(in));
+  in.fetch = 146790.0;
+  CHECK_THROWS_WITH_AS(make_spectrum(in),
+                       doctest::Contains("i.e. fetch < 146789 m at U10 = 12 m/s; got 146790 m"),
+                       SettingError);
+  in.allow_extrapolation = true;
+  CHECK_NOTHROW(make_spectrum(in));
+}
+
 TEST_CASE("spectrum settings: one that does not apply to the model is refused under its key") {
   // Each refusal is paired with the same setting accepted where it applies, so a check that
   // always (or never) throws fails here.
