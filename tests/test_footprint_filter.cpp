@@ -450,3 +450,50 @@ TEST_CASE("footprint filter: direct summation of each level equals its grids at 
     }
   }
 }
+
+TEST_CASE("footprint filter: a footprint between two levels reads their blend, field by field") {
+  // level_blend gives the two levels and the weight w of a footprint; every field read is
+  // (1 − w)·(finer level's) + w·(coarser level's), each level read alone, and the normal the
+  // blend of the two normals made unit again.
+  const Ocean ocean = realize_ocean(small_waves(), 1);
+  const double time = 0.4;
+  const FootprintFilter filter =
+      make_footprint_filter(ocean, time, Interpolation::bicubic, ShadingNormals::surface, false, 1);
+  REQUIRE(filter.levels.size() >= 3);
+  const std::vector<CascadeFields> fields = synthesize_ocean(ocean, time, 1);
+  // √λ₁ = r_1·2^1.3: 1.3 octaves above r_1, so levels 2 and 3 with w = 0.3 (to rounding).
+  const double r = filter.radii[1] * std::exp2(1.3);
+  const Footprint f{r * r, 0.0, 0.25 * r * r};
+  const LevelBlend b = level_blend(filter.radii, footprint_major_variance(f));
+  REQUIRE(b.level == 2);
+  CHECK(b.weight == doctest::Approx(0.3).epsilon(1e-12));
+  const double x = 3.7, z = -11.2;
+  const auto level = [&](int l) {
+    const FilterLevel& at = filter.levels[static_cast<std::size_t>(l) - 1];
+    return combine_shading_at(at.ocean, at.grids, at.evolved, x, z, Interpolation::bicubic,
+                              ShadingNormals::surface);
+  };
+  const PointFields fine = level(2), coarse = level(3);
+  const PointFields read = filtered_fields_at(ocean, fields, {}, filter, x, z, f,
+                                              Interpolation::bicubic, ShadingNormals::surface);
+  const double w = b.weight;
+  const auto blend = [&](double a, double c) { return (1.0 - w) * a + w * c; };
+  for (std::size_t i = 0; i < kFieldCount; ++i) {
+    CAPTURE(i);
+    CHECK(read.raw[i] == blend(fine.raw[i], coarse.raw[i]));
+  }
+  // Each checked field differs between the levels, so a swapped or dropped blend shows.
+  CHECK(fine.ddz_dx != coarse.ddz_dx);
+  CHECK(read.ddz_dx == blend(fine.ddz_dx, coarse.ddz_dx));
+  CHECK(fine.height != coarse.height);
+  CHECK(read.height == blend(fine.height, coarse.height));
+  CHECK(read.slope_x == blend(fine.slope_x, coarse.slope_x));
+  CHECK(read.slope_z == blend(fine.slope_z, coarse.slope_z));
+  CHECK(fine.jacobian != coarse.jacobian);
+  CHECK(read.jacobian == blend(fine.jacobian, coarse.jacobian));
+  CHECK(read.foam == blend(fine.foam, coarse.foam));
+  std::array<double, 3> n{};
+  for (std::size_t c = 0; c < 3; ++c) n[c] = blend(fine.normal[c], coarse.normal[c]);
+  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (std::size_t c = 0; c < 3; ++c) CHECK(read.normal[c] == n[c] / length);
+}

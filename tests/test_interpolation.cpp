@@ -165,6 +165,38 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("a point within rounding of a node reads the node's value exactly, in every mode") {
+  // x = m·Δ + L (a period on) in floating point lands an ulp or so either side of the node
+  // (Δ = 7.3/32 is not a binary fraction); a point within 1e−9 cell of a node is that node, so
+  // every interpolation returns the stored value bit for bit, and bilinear's gradient is that of
+  // the cell the node starts (not of the cell before it).
+  const int n = 32;
+  const double size = 7.3;
+  const double spacing = size / n;
+  const auto f = [](double x, double z) { return std::sin(1.3 * x + 0.2) * std::cos(0.7 * z) + x; };
+  const std::vector<double> g = sample_grid(f, n, size, false);
+  int off_node = 0;  // points whose scaled position is not an integer before the snap
+  for (int m = 1; m < n; m += 3) {
+    for (const int k : {2, 17, 30}) {
+      CAPTURE(m);
+      CAPTURE(k);
+      const double x = m * spacing + size, z = k * spacing - 2.0 * size;
+      const double stored = g[grid_offset(m, k, n)];
+      off_node += std::fmod(x, size) / spacing != m ? 1 : 0;
+      off_node += std::fmod(z, size) / spacing + n != k ? 1 : 0;
+      CHECK(sample_periodic(g, n, size, x, z) == stored);
+      CHECK(sample_periodic_bicubic(g, n, size, x, z) == stored);
+      const GridSample linear = sample_periodic_gradient(g, n, size, x, z, Interpolation::bilinear);
+      CHECK(linear.value == stored);
+      // The cell (m, k): its x slope at the node row z_k is the forward difference.
+      CHECK(linear.d_dx ==
+            doctest::Approx((g[grid_offset((m + 1) % n, k, n)] - stored) / spacing).epsilon(1e-9));
+      CHECK(sample_periodic_gradient(g, n, size, x, z, Interpolation::bicubic).value == stored);
+    }
+  }
+  CHECK(off_node > 0);  // the rounding the snap exists for occurs among these points
+}
+
 TEST_CASE("bilinear: 1, x, z and xz reproduced exactly; x^2 is not (error h^2 t(1 - t))") {
   const int n = 16;
   const double size = 8.0;
