@@ -174,6 +174,17 @@ TEST_CASE("whitecaps: the unresolved moments carry the unresolved slope variance
   CHECK(m.aacc / m.cccc == doctest::Approx(above.aacc / above.cccc).epsilon(1e-12));
   const RenderJob job = scene_render_job(scene, ocean, 1);
   CHECK(job.unresolved_jacobian.aaaa == m.aaaa);
+  // An empty band above the cut-off (it reaches the floor): the isotropic shape 3/8, 1/8, 3/8
+  // of the slope variance left (a budget's unresolved part may be clamped, not 0), finite.
+  SlopeVarianceBudget empty = b;
+  empty.cutoff_wavenumber = b.floor_wavenumber;
+  const JacobianMoments iso = unresolved_jacobian_moments(ocean, empty);
+  const double left = 1.21 * (b.unresolved.upwind + b.unresolved.crosswind);
+  CHECK(iso.aaaa == doctest::Approx(0.375 * left).epsilon(1e-15));
+  CHECK(iso.aaac == 0.0);
+  CHECK(iso.aacc == doctest::Approx(0.125 * left).epsilon(1e-15));
+  CHECK(iso.accc == 0.0);
+  CHECK(iso.cccc == doctest::Approx(0.375 * left).epsilon(1e-15));
 }
 
 TEST_CASE("whitecaps: the coverage of the pixels converges as the samples per pixel grow") {
