@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -249,6 +250,22 @@ TEST_CASE("strict parsing: command-line numbers") {
         "--n: must be in [0, 1024], got '-1'");
   CHECK(usage_error([] { (void)cli::parse_number_list("--l", "1,x", "[0, 1] each"); }) ==
         "--l: expected a finite number in [0, 1] each, got 'x'");
+}
+
+TEST_CASE("strict parsing: memory sizes, each end of [16M, 1048576G] and just beyond") {
+  using cli::parse_memory_size;
+  // K, M, G, T are powers of 1024; a plain number is bytes.
+  CHECK(parse_memory_size("--m", "16M") == 16.0 * 1024 * 1024);
+  CHECK(parse_memory_size("--m", "16384K") == 16.0 * 1024 * 1024);
+  CHECK(parse_memory_size("--m", "16777216") == 16.0 * 1024 * 1024);
+  CHECK(parse_memory_size("--m", "1048576G") == std::ldexp(1.0, 50));
+  CHECK(parse_memory_size("--m", "1024T") == std::ldexp(1.0, 50));
+  const std::string refusal =
+      "--m: must be in [16M, 1048576G] (bytes, or with a binary suffix K, M, G, T), got ";
+  CHECK(usage_error([] { (void)parse_memory_size("--m", "16777215"); }) == refusal + "'16777215'");
+  CHECK(usage_error([] { (void)parse_memory_size("--m", "1125899906842625"); }) ==
+        refusal + "'1125899906842625'");
+  CHECK(usage_error([] { (void)parse_memory_size("--m", "1048577G"); }) == refusal + "'1048577G'");
 }
 
 TEST_CASE("strict parsing: CLI11 options convert through integer_in and number_in") {

@@ -14,6 +14,7 @@
 #include "conformance/lighting_map.h"
 #include "conformance/study.h"
 #include "scene/scene.h"
+#include "waves/ocean.h"
 
 using namespace oceanref;
 
@@ -297,6 +298,34 @@ TEST_CASE("study: FFT grids equal direct summation at the nodes; interpolation e
   CHECK(e[0].height > 0.0);
   CHECK(e[1].height > 0.0);
   CHECK(e[1].height < e[0].height);
+  // The points: (300·frac(i/g), 300·frac(i/g²)), i = 1 … 64, g the real root of g³ = g + 1.
+  const std::vector<std::array<double, 2>> points = r2_points(64, 300.0);
+  REQUIRE(points.size() == 64);
+  const double g = 1.32471795724474602596;
+  CHECK(g * g * g == doctest::Approx(g + 1.0).epsilon(1e-15));
+  for (const int i : {1, 2, 64}) {
+    CAPTURE(i);
+    CHECK(points[static_cast<std::size_t>(i - 1)][0] == 300.0 * std::fmod(i / g, 1.0));
+    CHECK(points[static_cast<std::size_t>(i - 1)][1] == 300.0 * std::fmod(i / (g * g), 1.0));
+  }
+  // Each error is the largest over those points of |grid − direct summation|, recomputed here.
+  const Ocean ocean = realize_ocean(scene.waves, 2);
+  const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, 2);
+  const std::vector<EvolvedCascade> evolved = evolve_ocean(ocean, scene.time);
+  for (std::size_t m = 0; m < 2; ++m) {
+    CAPTURE(e[m].mode);
+    double height = 0.0, slope = 0.0, jacobian = 0.0;
+    for (const auto& [x, z] : points) {
+      const PointFields p = combine_at(ocean, fields, evolved, x, z, e[m].interpolation);
+      const PointFields d = combine_direct(ocean, x, z, scene.time);
+      height = std::max(height, std::fabs(p.height - d.height));
+      slope = std::max({slope, std::fabs(p.slope_x - d.slope_x), std::fabs(p.slope_z - d.slope_z)});
+      jacobian = std::max(jacobian, std::fabs(p.jacobian - d.jacobian));
+    }
+    CHECK(e[m].height == height);
+    CHECK(e[m].slope == slope);
+    CHECK(e[m].jacobian == jacobian);
+  }
 
   std::ostringstream out;
   bench_slope_budget(

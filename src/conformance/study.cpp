@@ -162,10 +162,7 @@ void bench_synthesis_impl(std::ostream& out, const Flags& f) {
     const std::vector<EvolvedCascade> evolved = evolve_ocean(ocean, t);
     double e_height = 0.0, e_slope = 0.0, e_jacobian = 0.0;
     double m_height = 0.0, m_slope = 0.0, m_jacobian = 0.0;
-    const double g = 1.32471795724474602596;  // plastic number: the R2 sequence
-    for (int i = 1; i <= 64; ++i) {
-      const double x = w.sizes[0] * std::fmod(i / g, 1.0);
-      const double z = w.sizes[0] * std::fmod(i / (g * g), 1.0);
+    for (const auto& [x, z] : r2_points(64, w.sizes[0])) {
       const PointFields a = combine_from_grids(ocean, grids, x, z);
       const PointFields d = combine_direct(ocean, evolved, x, z);
       e_height = std::max(e_height, std::fabs(a.height - d.height));
@@ -515,34 +512,39 @@ void bench_render(std::ostream& out, const std::string& scene_path, int threads,
   bench_render_impl(out, scene_path, threads, width, height, spp);
 }
 
+std::vector<std::array<double, 2>> r2_points(int count, double size) {
+  const double g = 1.32471795724474602596;  // the plastic number: g³ = g + 1
+  std::vector<std::array<double, 2>> points;
+  for (int i = 1; i <= count; ++i) {
+    points.push_back({size * std::fmod(i / g, 1.0), size * std::fmod(i / (g * g), 1.0)});
+  }
+  return points;
+}
+
 std::vector<InterpolationError> interpolation_errors(const Scene& scene, int threads) {
   const Ocean ocean = realize_ocean(scene.waves, threads);
   const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, threads);
-  const double g = 1.32471795724474602596;  // plastic number: the R2 sequence
-  const int points = 64;
+  const std::vector<std::array<double, 2>> points = r2_points(64, 300.0);
   const std::vector<EvolvedCascade> evolved = evolve_ocean(ocean, scene.time);
   std::vector<PointFields> exact;
-  for (int i = 1; i <= points; ++i) {
-    exact.push_back(combine_direct(ocean, evolved, 300.0 * std::fmod(i / g, 1.0),
-                                   300.0 * std::fmod(i / (g * g), 1.0)));
-  }
+  for (const auto& [x, z] : points) exact.push_back(combine_direct(ocean, evolved, x, z));
   std::vector<InterpolationError> rows;
   for (const auto& [mode, name] : kInterpolations) {
     InterpolationError e;
     e.mode = std::string(name);
     e.interpolation = mode;
     const auto t0 = std::chrono::steady_clock::now();
-    for (int i = 1; i <= points; ++i) {
-      const PointFields p = combine_at(ocean, fields, evolved, 300.0 * std::fmod(i / g, 1.0),
-                                       300.0 * std::fmod(i / (g * g), 1.0), mode);
-      const PointFields& d = exact[static_cast<std::size_t>(i - 1)];
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const PointFields p = combine_at(ocean, fields, evolved, points[i][0], points[i][1], mode);
+      const PointFields& d = exact[i];
       e.height = std::max(e.height, std::fabs(p.height - d.height));
       e.slope = std::max(
           e.slope, std::max(std::fabs(p.slope_x - d.slope_x), std::fabs(p.slope_z - d.slope_z)));
       e.jacobian = std::max(e.jacobian, std::fabs(p.jacobian - d.jacobian));
     }
     e.seconds_per_point =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / points;
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
+        static_cast<double>(points.size());
     rows.push_back(e);
   }
   return rows;

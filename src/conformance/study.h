@@ -6,6 +6,7 @@
 // parts (tests/test_study.cpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -40,8 +41,12 @@ void bench_lighting(std::ostream& out, int order);
 void bench_render(std::ostream& out, const std::string& scene_path, int threads, int width,
                   int height, int spp);
 
-// The combined fields by each interpolation mode against direct summation at 64 points of a
-// fixed quasi-random (R2) sequence over [0, 300 m)²: the largest absolute error of the height
+// The first `count` points of the R2 quasi-random sequence over [0, size)²: (size·frac(i/g),
+// size·frac(i/g²)), i = 1 … count, g the plastic number (the study's fixed evaluation points).
+std::vector<std::array<double, 2>> r2_points(int count, double size);
+
+// The combined fields by each interpolation mode against direct summation at 64 points of the
+// R2 sequence over [0, 300 m)² (r2_points): the largest absolute error of the height
 // [m], of the slopes and of the Jacobian, and the mean time per point.
 struct InterpolationError {
   std::string mode;  // bilinear, bicubic, direct
