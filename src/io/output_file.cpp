@@ -139,9 +139,7 @@ OutputFile::OutputFile(const std::string& path)
     fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd_ < 0 && (errno != EEXIST || n == 999)) {
       const int error = errno;
-      release_slot(signal_slot_);
-      signal_slot_ = -1;
-      temporary_.clear();
+      release_slot(signal_slot_);  // fail throws: no destructor runs for this object
       fail("cannot create a temporary file in the folder " + folder.string(), error);
     }
   }
