@@ -78,17 +78,24 @@ TEST_CASE(
     const RenderedImage image = render(aa->job, aa->unresolved);
     const int w = image.width, h = image.height;
     const auto at = [&](int x, int y) { return static_cast<std::size_t>(y * w + x); };
+    // The largest contrast of a pixel with its 4 neighbours in the plain render.
+    const auto contrast_at = [&](int x, int y) {
+      double contrast = 0.0;
+      const int dx[] = {-1, 1, 0, 0}, dy[] = {0, 0, -1, 1};
+      for (int n = 0; n < 4; ++n) {
+        const int nx = x + dx[n], ny = y + dy[n];
+        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+        contrast = std::fmax(contrast,
+                             luminance_contrast(one.radiance[at(x, y)], one.radiance[at(nx, ny)]));
+      }
+      return contrast;
+    };
     long flagged = 0;
+    int first_flagged = -1;  // x + w·y of the first flagged pixel
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
-        double contrast = 0.0;
-        const int dx[] = {-1, 1, 0, 0}, dy[] = {0, 0, -1, 1};
-        for (int n = 0; n < 4; ++n) {
-          const int nx = x + dx[n], ny = y + dy[n];
-          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-          contrast = std::fmax(
-              contrast, luminance_contrast(one.radiance[at(x, y)], one.radiance[at(nx, ny)]));
-        }
+        const double contrast = contrast_at(x, y);
+        if (contrast > threshold && first_flagged < 0) first_flagged = x + w * y;
         const Vec3& got = image.radiance[at(x, y)];
         if (contrast > threshold) {
           ++flagged;
@@ -107,6 +114,18 @@ TEST_CASE(
     CHECK(flagged == image.antialiased_pixels);
     CHECK(flagged > 20);
     CHECK(flagged < w * h / 2);
+    // A threshold equal to a pixel's contrast leaves that pixel alone: "above", not "at".
+    REQUIRE(first_flagged >= 0);
+    const int fx = first_flagged % w, fy = first_flagged / w;
+    const double exact = contrast_at(fx, fy);
+    const auto at_exact = aa_prepare(aa_scene(exact), renderer);
+    const RenderedImage edge = render(at_exact->job, at_exact->unresolved);
+    CHECK(edge.radiance[at(fx, fy)] == one.radiance[at(fx, fy)]);
+    long above = 0;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) above += contrast_at(x, y) > exact ? 1 : 0;
+    }
+    CHECK(edge.antialiased_pixels == above);
     // Bands (each renders its neighbour rows) and threads give the same bits.
     const RenderFrame frame = prepare_frame(aa->job, aa->unresolved);
     const RenderedImage top = render_rows(frame, 0, 13);
