@@ -573,6 +573,35 @@ TEST_CASE("a perfect mirror (sigma2 = 0) is rejected, not integrated") {
 
 // ---- The geometry of the integrals' coordinates and breakpoints (reference_geometry) ---------
 
+TEST_CASE("reference geometry: the chord's part of the slope plane [-T, T]") {
+  using namespace reference_geometry;
+  const double t = kSlopeTruncation;
+  // Covering [−T, T] (also exactly at both ends): the whole line.
+  for (const std::pair<double, double>& chord :
+       {std::pair{0.0, 10.0}, std::pair{0.0, t}, std::pair{1.0, t + 1}, std::pair{-2.5, 9.0}}) {
+    const double centre = chord.first, half = chord.second;  // copies: CAPTURE under clang 14
+    CAPTURE(centre);
+    CAPTURE(half);
+    const ChordRange r = chord_in_slope_plane(centre, half);
+    CHECK(r.whole_line);
+    CHECK(r.lo == -t);
+    CHECK(r.hi == t);
+  }
+  // Not covering it: the chord clipped to [−T, T], empty when outside.
+  const auto clipped = [](double centre, double half) {
+    const ChordRange r = chord_in_slope_plane(centre, half);
+    CHECK_FALSE(r.whole_line);
+    return std::array{r.lo, r.hi};
+  };
+  CHECK(clipped(0.0, 2.0) == std::array{-2.0, 2.0});
+  CHECK(clipped(5.0, 2.0) == std::array{3.0, t});
+  CHECK(clipped(-5.0, 2.0) == std::array{-t, -3.0});
+  CHECK(clipped(1.0, t) == std::array{1.0 - t, t});  // reaches T, not −T
+  CHECK(clipped(-1.0, t) == std::array{-t, t - 1.0});
+  const std::array<double, 2> outside = clipped(20.0, 3.0);
+  CHECK_FALSE(outside[1] > outside[0]);
+}
+
 namespace {
 // The facet normal of slope ζ in the convention ñ = N − ζ_x T_x − ζ_y T_y, normalised, and V
 // mirrored about it.

@@ -299,6 +299,19 @@ TEST_CASE("spectral tables: linear interpolation between the published wavelengt
   // and water vapour's k_wa at 695 nm (between 0.016 and 0.024).
   CHECK(interpolate(kMixedGasAbsorption, 765.0) == doctest::Approx(1.605).epsilon(1e-14));
   CHECK(interpolate(kWaterVapourAbsorption, 695.0) == doctest::Approx(0.020).epsilon(1e-14));
+  // The ozone table's wavelengths as published: increasing, on the 5-nm grid (5-nm steps to
+  // 610 nm, 10-nm steps after it), and k_o = 0.04 /cm at 510 nm, 0.125 at 600 nm.
+  for (std::size_t i = 0; i < kOzoneAbsorption.size(); ++i) {
+    const double w = kOzoneAbsorption[i].wavelength;
+    CAPTURE(w);
+    CHECK(std::fmod(w, 5.0) == 0.0);
+    if (i > 0) CHECK(w > kOzoneAbsorption[i - 1].wavelength);
+    if (i > 0 && w > 445.0) {
+      CHECK(w - kOzoneAbsorption[i - 1].wavelength == (w <= 610.0 ? 5.0 : 10.0));
+    }
+  }
+  CHECK(interpolate(kOzoneAbsorption, 510.0) == 0.04);
+  CHECK(interpolate(kOzoneAbsorption, 600.0) == 0.125);
 }
 
 TEST_CASE("sun spectrum: the table's 380-750 nm and nothing outside it") {

@@ -125,6 +125,11 @@ std::array<double, 2> sky_frame_chord(const SkyFrame& k, const math::SinCos& ang
   return {-k.b * k.extent * angle.sin / k.c, k.radius * angle.cos / std::sqrt(k.c)};
 }
 
+ChordRange chord_in_slope_plane(double centre, double half_chord) {
+  if (centre - half_chord <= -kT && centre + half_chord >= kT) return {true, -kT, kT};
+  return {false, std::fmax(-kT, centre - half_chord), std::fmin(kT, centre + half_chord)};
+}
+
 // The facet that mirrors V into the sun: the circumsolar peak (a cusp of the Perez γ-term). Its
 // normal is h = V + S, and in the convention ñ = N − ζ_x T_x − ζ_y T_y (reflected_sky_per_slope)
 // its slope is ζ = −h_t/h_n.
@@ -268,11 +273,11 @@ RgbEstimate reflected_sky_reference(const Vec3& view, const SurfaceFrame& f, Slo
           for (double& x : e.value) x *= g;
           return e;
         };
-        if (centre - half_chord <= -kT && centre + half_chord >= kT) {
+        const ChordRange chord = chord_in_slope_plane(centre, half_chord);
+        if (chord.whole_line) {
           return integrate_line<3>(per_slope, inner);  // outside the chord L·N < 0: zero
         }
-        const double lo = std::fmax(-kT, centre - half_chord);
-        const double hi = std::fmin(kT, centre + half_chord);
+        const double lo = chord.lo, hi = chord.hi;
         if (!(hi > lo)) return Estimate<3>{};
         return integrate_adaptive<3>(
             [&](double w) {

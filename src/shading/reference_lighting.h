@@ -91,6 +91,15 @@ SkyFrame sky_frame(const Vec3& view, const SurfaceFrame& frame, SlopeVariance s)
 std::array<double, 2> sky_frame_slope(const SkyFrame& k, double u, double w);
 // The horizon ellipse's chord at θ (angle = sin θ, cos θ): its centre and half-length in w.
 std::array<double, 2> sky_frame_chord(const SkyFrame& k, const math::SinCos& angle);
+// The part of the chord (centre ± half-chord) inside the slope plane's [−T, T], T =
+// kSlopeTruncation: `whole_line` when it covers all of [−T, T] (the Gaussian in w is then
+// integrated over the whole line: beyond ±T it is below e^−36); else [lo, hi], empty when
+// hi ≤ lo.
+struct ChordRange {
+  bool whole_line;
+  double lo, hi;
+};
+ChordRange chord_in_slope_plane(double centre, double half_chord);
 // (u, w) of the facet that mirrors V into the sun (the circumsolar peak, a breakpoint of both
 // rules); (0, 0) when the sun or that facet is below the surface's plane.
 std::array<double, 2> circumsolar_facet(const SkyFrame& k, const Vec3& view,
