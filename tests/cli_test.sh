@@ -236,6 +236,17 @@ expect 2 'give one of --dir' sky --sun-zenith-deg 30
 expect 0 '^quantity,value$' brdf --view -0.6,0.5,0 --sun 0.6,0.5,0 --sigma2 0.02,0.01
 grep -q '^F_mean,' "$tmp/out" || fail "brdf does not print F_mean"
 expect 2 '--sigma2.*\[1e-6, 1\]' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0,0.01
+# --sea-colour and --sigma2: each component's range checked on its own, both ends accepted.
+for c in '-0.01,0,0' '0,-0.01,0' '0,0,-0.01' '1.01,0,0' '0,1.01,0' '0,0,1.01' '0,0' '0,0,0,0'; do
+  expect 2 "^oceanref: --sea-colour: expected r,g,b each in \[0, 1\], got '$c'$" \
+    brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --sea-colour "$c"
+done
+expect 0 '^L_sea.R,0(\.0*)?$' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --sea-colour 0,1,1
+expect 0 '^L_sea.B,0(\.0*)?$' brdf --view 0,1,0 --sun 0,1,0 --sigma2 1e-6,1 --sea-colour 1,1,0
+for s in 9e-7,0.01 0.01,9e-7 1.01,0.01 0.01,1.01 0.01; do
+  expect 2 "^oceanref: --sigma2: expected sx,sy with each in \[1e-6, 1\], got '$s'$" \
+    brdf --view 0,1,0 --sun 0,1,0 --sigma2 "$s"
+done
 expect 2 '--fresnel.*exact or schlick' brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --fresnel x
 expect 2 "^oceanref: --accuracy: expected reference or fast; got 'x'$" \
   brdf --view 0,1,0 --sun 0,1,0 --sigma2 0.01,0.01 --accuracy x
@@ -889,6 +900,17 @@ for f in exr png; do
 done
 expect 0 '^tile,1/3$' render "$scene" --tile 1/3 -o "$tmp/t.piece"
 grep -q '^rows,18,36$' "$tmp/out" || fail "render --tile 1/3 of 54 rows did not render rows 18 to 35"
+# On a terminal: the tile's rows and the files read and written, by name.
+script -qec "'$bin_path' render '$scene' --tile 1/3 -o '$tmp/t.piece'" /dev/null >"$tmp/tty" 2>&1
+script -qec "'$bin_path' merge '$scene' '$tmp/tile0.piece' '$tmp/tile1.piece' '$tmp/tile2.piece' \
+  -o '$tmp/merged_tty.exr'" /dev/null >>"$tmp/tty" 2>&1
+for line in "rendering 96x54 at 1 spp, tile 1 of 3 (rows 18 to 35)" "writing $tmp/t.piece" \
+  "reading $tmp/tile0.piece" "reading $tmp/tile1.piece" "reading $tmp/tile2.piece" \
+  "writing $tmp/merged_tty.exr"; do
+  checks=$((checks + 1))
+  tr -d '\r' <"$tmp/tty" | grep -qxF "oceanref: $line" ||
+    fail "render --tile, merge on a terminal: no progress line '$line': $(tr -d '\r' <"$tmp/tty" | grep '^oceanref')"
+done
 expect 2 '^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got .3/3.$' render "$scene" --tile 3/3 -o "$tmp/x.piece"
 expect 2 '^oceanref: --tile: expected I/N' render "$scene" --tile 1 -o "$tmp/x.piece"
 expect 2 '^oceanref: --tile: N must be <= the image.s 54 rows, got 55$' render "$scene" --tile 0/55 -o "$tmp/x.piece"
@@ -928,6 +950,24 @@ checks=$((checks + 1))
 checks=$((checks + 1))
 [ "$(python3 -c "import struct, sys; d = open(sys.argv[1], 'rb').read(24); print(*struct.unpack('>II', d[16:24]))" "$tmp/acf.png")" = "72 32" ] ||
   fail "acf --map: expected two 32-pixel maps 8 pixels apart (72 x 32)"
+# Progress goes to a terminal only, naming each scene and what is done to it.
+checks=$((checks + 1))
+[ -s "$tmp/err" ] && fail "acf wrote progress to stderr that is not a terminal: $(cat "$tmp/err")"
+script -qec "'$bin_path' acf '$tmp/acf_periodic.json' '$tmp/acf_tiled.json' --lines 16 --length 1 \
+  --samples-per-period 2 -o '$tmp/acf_tty.csv'" /dev/null >"$tmp/tty" 2>&1
+for scene in acf_periodic acf_tiled; do
+  for line in "synthesizing $tmp/$scene.json" "sampling 16 lines of $tmp/$scene.json"; do
+    checks=$((checks + 1))
+    tr -d '\r' <"$tmp/tty" | grep -qxF "oceanref acf: $line" ||
+      fail "acf on a terminal: no progress line '$line': $(cat "$tmp/tty")"
+  done
+done
+script -qec "'$bin_path' fields '$tmp/acf_periodic.json' -o '$tmp/acf_fields.exr'" /dev/null >"$tmp/tty" 2>&1
+for line in "realizing the spectrum" "writing $tmp/acf_fields.exr"; do
+  checks=$((checks + 1))
+  tr -d '\r' <"$tmp/tty" | grep -qxF "oceanref fields: $line" ||
+    fail "fields on a terminal: no progress line '$line': $(cat "$tmp/tty")"
+done
 expect 2 '--length: must be in \[0.03125, 1024\]' acf "$tmp/acf_periodic.json" --length 0 -o "$tmp/acf_bad.csv"
 checks=$((checks + 1))
 [ -e "$tmp/acf_bad.csv" ] && fail "acf --length 0 wrote a file"

@@ -1236,6 +1236,36 @@ def heat_colours(e):
 compare_report_pictures()
 
 
+def compare_report_single_parts():
+    """Two single-part files are compared part to part whatever their names (compare's rule);
+    the report shows that pair too: a golden part named 'beauty' against an unnamed candidate
+    gives the colour overview and one section per channel, named after the golden's part."""
+    with tempfile.TemporaryDirectory() as tmp:
+        g = np.random.default_rng(5).uniform(1.0, 2.0, (6, 8, 3)).astype(np.float32)
+        gp, cp = os.path.join(tmp, "g.exr"), os.path.join(tmp, "c.exr")
+        out = oiio.ImageOutput.create(gp)
+        spec = oiio.ImageSpec(8, 6, 3, "float")
+        spec.attribute("oiio:subimagename", "beauty")
+        out.open(gp, spec)
+        out.write_image(g)
+        out.close()
+        write_rgb(cp, g * np.float32(1.01))
+        report_dir = os.path.join(tmp, "report")
+        r = subprocess.run([binary, "compare", cp, gp, "--report", report_dir],
+                           capture_output=True, text=True)
+        check(r.returncode == 1 and "part 'beauty'" in r.stdout,
+              f"compare of a named and an unnamed single part: {r.returncode} {r.stdout}")
+        html = open(os.path.join(report_dir, "index.html")).read()
+        flips = re.findall(r'<figure class="flip"', html)
+        sections = re.findall(r'<section class="channel" [^>]*data-channel="([^"]+)"', html)
+        check(len(flips) == 4 and sections == ["beauty/B", "beauty/G", "beauty/R"],
+              f"compare --report of a named and an unnamed single part: {len(flips)} flip "
+              f"figures (expected 4), channel sections {sections}")
+
+
+compare_report_single_parts()
+
+
 # --- render, fields, acf: each flag equals the scene setting it stands for, or its definition ----
 
 def report(*args):

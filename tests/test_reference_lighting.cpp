@@ -14,6 +14,7 @@
 
 #include "core/quadrature.h"
 #include "core/vec3.h"
+#include "shading/lighting_terms.h"
 #include "shading/ocean_lighting.h"
 #include "shading/reference_lighting.h"
 #include "test_support.h"
@@ -554,6 +555,49 @@ TEST_CASE("the fast rules are finite and converge to the reference at every orde
                                                : 2e-4) *
                                         sky_r);
     }
+  }
+}
+
+TEST_CASE("lighting_terms, reference: each term its integral's, evaluations their sum, toggles") {
+  // The terms of a sample are the three reference integrals, called here one by one with the
+  // frame's floors; the evaluations are their sum; each toggle removes its term and its work.
+  // The sun is integrated only while it lights the frame (a finite floor, sun above the horizon).
+  for (const Case& c : kSweep) {
+    CAPTURE(describe(c));
+    const Sky sky = sky_of(c);
+    const SurfaceFrame f = wind_frame(c.normal, 0.3);
+    ShadingSettings sh;
+    const FrameLighting light = frame_lighting(sky, sh);
+    const bool sun_lit = light.sun_reflectance_floor < HUGE_VAL;
+    CHECK(sun_lit == (c.sun_zenith_deg < 90.0));
+    const ScalarEstimate sun =
+        reflected_sun_reference(light.sun_direction, kSunAngularRadius, c.view, f, c.s, sh.brdf,
+                                sh.tolerance, light.sun_reflectance_floor);
+    const RgbEstimate reflected =
+        reflected_sky_reference(c.view, f, c.s, sky, sh.brdf, sh.tolerance, light.radiance_floor);
+    const ScalarEstimate fresnel = mean_fresnel_reference(c.view, f, c.s, sh.brdf, sh.tolerance);
+    const long sun_work = sun_lit ? sun.evaluations : 0;
+    const LightingTerms all = lighting_terms(sh, sky, light, c.view, f, c.s, false);
+    CHECK(all.evaluations == sun_work + reflected.evaluations + fresnel.evaluations);
+    CHECK(all.sun_reflectance == (sun_lit ? sun.value : 0.0));
+    CHECK(all.sky[1] == reflected.value[1]);
+    CHECK(all.mean_fresnel == fresnel.value);
+    CHECK(all.sea[2] == refracted_sea(fresnel.value, sh.sea_colour, light.sky_irradiance)[2]);
+    sh.sun = false;
+    const LightingTerms no_sun = lighting_terms(sh, sky, light, c.view, f, c.s, false);
+    CHECK(no_sun.evaluations == reflected.evaluations + fresnel.evaluations);
+    CHECK(no_sun.sun[1] == 0.0);
+    sh.sun = true;
+    sh.sky = false;
+    const LightingTerms no_sky = lighting_terms(sh, sky, light, c.view, f, c.s, false);
+    CHECK(no_sky.evaluations == sun_work + fresnel.evaluations);
+    CHECK(no_sky.sky[0] == 0.0);
+    sh.sky = true;
+    sh.sea = false;
+    const LightingTerms no_sea = lighting_terms(sh, sky, light, c.view, f, c.s, false);
+    CHECK(no_sea.evaluations == sun_work + reflected.evaluations);
+    CHECK(no_sea.sea[2] == 0.0);
+    CHECK(no_sea.mean_fresnel == 0.0);
   }
 }
 

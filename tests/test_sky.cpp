@@ -299,19 +299,43 @@ TEST_CASE("spectral tables: linear interpolation between the published wavelengt
   // and water vapour's k_wa at 695 nm (between 0.016 and 0.024).
   CHECK(interpolate(kMixedGasAbsorption, 765.0) == doctest::Approx(1.605).epsilon(1e-14));
   CHECK(interpolate(kWaterVapourAbsorption, 695.0) == doctest::Approx(0.020).epsilon(1e-14));
-  // The ozone table's wavelengths as published: increasing, on the 5-nm grid (5-nm steps to
-  // 610 nm, 10-nm steps after it), and k_o = 0.04 /cm at 510 nm, 0.125 at 600 nm.
-  for (std::size_t i = 0; i < kOzoneAbsorption.size(); ++i) {
-    const double w = kOzoneAbsorption[i].wavelength;
-    CAPTURE(w);
-    CHECK(std::fmod(w, 5.0) == 0.0);
-    if (i > 0) CHECK(w > kOzoneAbsorption[i - 1].wavelength);
-    if (i > 0 && w > 445.0) {
-      CHECK(w - kOzoneAbsorption[i - 1].wavelength == (w <= 610.0 ? 5.0 : 10.0));
+}
+
+TEST_CASE("absorption tables: a second public transcription of Iqbal's tables, entry by entry") {
+  // Preetham's sample code as published in Sunflow (src/org/sunflow/core/light/SunSkyLight.java,
+  // k_o, k_g and k_wa "from pg 127, 130, MI"): the same decimal numbers, so every wavelength and
+  // value must be the same double; a typo in either transcription shows here.
+  struct Table {
+    const std::vector<SpectralPoint>* ours;
+    std::vector<double> wavelengths, values;
+  };
+  const std::vector<Table> tables = {
+      {&kOzoneAbsorption,
+       {300, 305, 310, 315, 320, 325, 330, 335, 340, 345, 350, 355, 445, 450, 455, 460,
+        465, 470, 475, 480, 485, 490, 495, 500, 505, 510, 515, 520, 525, 530, 535, 540,
+        545, 550, 555, 560, 565, 570, 575, 580, 585, 590, 595, 600, 605, 610, 620, 630,
+        640, 650, 660, 670, 680, 690, 700, 710, 720, 730, 740, 750, 760, 770, 780, 790},
+       {10.0, 4.8,  2.7,  1.35, .8,   .380, .160, .075, .04,  .019, .007, .0,   .003,
+        .003, .004, .006, .008, .009, .012, .014, .017, .021, .025, .03,  .035, .04,
+        .045, .048, .057, .063, .07,  .075, .08,  .085, .095, .103, .110, .12,  .122,
+        .12,  .118, .115, .12,  .125, .130, .12,  .105, .09,  .079, .067, .057, .048,
+        .036, .028, .023, .018, .014, .011, .010, .009, .007, .004, .0,   .0}},
+      {&kMixedGasAbsorption, {759, 760, 770, 771}, {0, 3.0, 0.210, 0}},
+      {&kWaterVapourAbsorption,
+       {689, 690, 700, 710, 720, 730, 740, 750, 760, 770, 780, 790, 800},
+       {0, 0.160e-1, 0.240e-1, 0.125e-1, 0.100e+1, 0.870, 0.610e-1, 0.100e-2, 0.100e-4, 0.100e-4,
+        0.600e-3, 0.175e-1, 0.360e-1}},
+  };
+  for (const Table& table : tables) {
+    REQUIRE(table.ours->size() == table.wavelengths.size());
+    REQUIRE(table.values.size() == table.wavelengths.size());
+    for (std::size_t i = 0; i < table.wavelengths.size(); ++i) {
+      const SpectralPoint point = (*table.ours)[i];
+      CAPTURE(point.wavelength);
+      CHECK(point.wavelength == table.wavelengths[i]);
+      CHECK(point.value == table.values[i]);
     }
   }
-  CHECK(interpolate(kOzoneAbsorption, 510.0) == 0.04);
-  CHECK(interpolate(kOzoneAbsorption, 600.0) == 0.125);
 }
 
 TEST_CASE("sun spectrum: the table's 380-750 nm and nothing outside it") {

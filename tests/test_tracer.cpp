@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -64,6 +65,48 @@ TEST_CASE("tracer: a flat grid, hit points and weights by hand") {
   holed.skipped[2 * (2 * 4 + 1)] = true;
   const BoundsTree holed_tree = build_bounds_tree(holed.view());
   CHECK(trace_ray(holed.view(), holed_tree, {1.25, 10.0, 2.5}, {0.0, -1.0, 0.0}).triangle < 0);
+}
+
+TEST_CASE("tracer: a hit on an edge or vertex shared by triangles goes to the lowest index") {
+  // On a flat 9 × 9 grid, rays from every side land exactly on cell edges, cell diagonals and
+  // vertices, where several triangles are hit at the same t. The hit belongs to the lowest
+  // triangle index among them whatever order the quadtree visits them in (a ray from +x reaches
+  // the higher cells' boxes first). Every point below lies on an edge, a diagonal or a vertex
+  // shared by two to six triangles. The candidates by hand: cell (i, j)'s first triangle
+  // 2 (8 j + i) holds fx + fz <= 1, its second fx + fz >= 1.
+  const TestGrid g = make_grid(9, 9, [](double, double) { return 0.0; });
+  const BoundsTree tree = build_bounds_tree(g.view());
+  const auto lowest_triangle = [](double x, double z) {
+    int best = -1;
+    for (int j = 0; j < 8; ++j) {
+      for (int i = 0; i < 8; ++i) {
+        const double fx = x - i, fz = z - j;
+        if (fx < 0.0 || fx > 1.0 || fz < 0.0 || fz > 1.0) continue;
+        const int first = 2 * (8 * j + i);
+        const int id = fx + fz <= 1.0 ? first : first + 1;
+        if (best < 0 || id < best) best = id;
+      }
+    }
+    return best;
+  };
+  for (const glm::dvec3 d :
+       {glm::dvec3{-1, -1, 0}, glm::dvec3{1, -1, 0}, glm::dvec3{0, -1, -1}, glm::dvec3{0, -1, 1},
+        glm::dvec3{-1, -1, -1}, glm::dvec3{1, -1, 1}, glm::dvec3{0, -1, 0}}) {
+    for (const auto& [x, z] : {std::pair{4.0, 2.5}, std::pair{2.5, 4.0}, std::pair{4.0, 4.0},
+                               std::pair{3.25, 5.75}, std::pair{6.0, 1.0}, std::pair{1.5, 6.5}}) {
+      const glm::dvec3 direction = d;
+      const double px = x, pz = z;
+      CAPTURE(direction.x);
+      CAPTURE(direction.z);
+      CAPTURE(px);
+      CAPTURE(pz);
+      const glm::dvec3 origin = glm::dvec3{px, 0.0, pz} - 3.0 * direction;
+      const RayHit hit = trace_ray(g.view(), tree, origin, direction);
+      CHECK(hit.t == 3.0);
+      CHECK(hit.triangle == lowest_triangle(px, pz));
+      CHECK(trace_ray_brute_force(g.view(), origin, direction).triangle == hit.triangle);
+    }
+  }
 }
 
 TEST_CASE("tracer: the quadtree finds what testing every triangle finds") {
