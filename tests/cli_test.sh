@@ -179,6 +179,11 @@ awk -F, "$node_rows" "$tmp/out" ||
   fail "fields --at 0,0: FFT and direct summation differ by more than 1e-12"
 awk -F, '$1 == "sum" && $2 == "slope_x" { d = $5 < 0 ? -$5 : $5; exit !(d > 1e-6) }' "$tmp/out" ||
   fail "fields --at 0,0: the surface slopes should be the interpolant's, not the spectral ones"
+for at in 1.0000001e9,0 0,-1.0000001e9 0 0,0,0; do
+  expect 2 "^oceanref: --at: (coordinates must be in \[-1e9, 1e9\] m|expected x,z), got '$at'$" \
+    fields "$tmp/scene.json" --at "$at"
+done
+expect 0 '^cascade,field,fft,direct,difference$' fields "$tmp/scene.json" --at 1e9,-1e9
 sed 's/"choppiness": -0.9/"choppiness": -0.9, "realization": "mastin"/' "$tmp/scene.json" >"$tmp/mastin.json"
 expect 0 '^cascade,field' fields "$tmp/mastin.json" --at 0,0
 awk -F, "$node_rows" "$tmp/out" ||
@@ -335,7 +340,16 @@ expect 0 '^sample,image_x,image_y,hit,depth' probe "$tmp/render.json" --pixel 20
 expect 0 ',object,reflects_object$' probe \
   "$source_dir/reference/scenes/golden/buoy_reflected_raytrace.json" --pixel 48,30
 sed -n 2p "$tmp/out" | grep -q ',1,0$' || fail "probe: the buoy's sample is not an object"
-expect 2 '--pixel.*inside the 40x24 image' probe "$tmp/render.json" --pixel 40,3
+for xy in 40,3 3,24 -1,3 3,-1 1.5,3 3,1.5 3 1,2,3; do
+  expect 2 "^oceanref: --pixel: expected integer x,y inside the 40x24 image, got '$xy'$" \
+    probe "$tmp/render.json" --pixel "$xy"
+done
+for xy in 0,0 39,23; do
+  expect 0 '^sample,image_x,image_y,' probe "$tmp/render.json" --pixel "$xy"
+  checks=$((checks + 1))
+  awk -F, -v x="${xy%,*}" -v y="${xy#*,}" 'NR > 1 && NR <= 5 && !($2 > x && $2 < x + 1 && $3 > y && $3 < y + 1) { bad = 1 }
+    END { exit bad || NR != 7 }' "$tmp/out" || fail "probe --pixel $xy: samples outside the pixel: $(cat "$tmp/out")"
+done
 expect 2 '--spp.*square' render "$tmp/render.json" -o "$tmp/x.exr" --spp 3
 printf '{"waves": {}, "render": {"samples_per_pixel": 2}}' >"$tmp/bad.json"
 expect 2 'render.samples_per_pixel.*square' render "$tmp/bad.json" -o "$tmp/x.exr"
@@ -726,6 +740,16 @@ expect 2 "^oceanref: --suggest: cannot be combined with --report, --profile" com
   "$tmp/f32.exr" "$tmp/gold.exr" --report "$tmp/suggest_report"
 expect 2 '--yes' golden update --root reference
 
+# --- bench's own checks (before any timing) ------------------------------------------------------
+expect 2 "^oceanref: --resolution: must be a power of two in \[4, 4096\], got 6$" bench synthesis --resolution 6
+expect 2 "^oceanref: --low-resolution: must be a power of two in \[4, --resolution\], got 16$" \
+  bench synthesis --resolution 8 --low-resolution 16
+expect 2 "^oceanref: --low-resolution: must be a power of two in \[4, --resolution\], got 12$" \
+  bench synthesis --resolution 16 --low-resolution 12
+expect 2 "^oceanref: --spp: must be a square number in \[1, 256\], got 3$" bench render --spp 3
+expect 2 "^oceanref: --output requires --size" sky --sun-zenith-deg 30 -o "$tmp/x.exr"
+expect 2 "^oceanref: --size requires --output" sky --sun-zenith-deg 30 --size 8
+
 # --- bench lighting-map and lighting-pixels (tools/lighting_accuracy_map.sh) -------------------
 expect 0 '--csv' bench lighting-map --help
 for flag in --svg --threads --quick; do
@@ -735,6 +759,35 @@ expect 0 '^\| fast \| order 4x4 \(default\)' bench lighting-map --quick --csv "$
   --svg "$tmp/map.svg"
 grep -q '^integral,mode,setting,cases,median_relative_error' "$tmp/map.csv" ||
   fail "bench lighting-map --csv has no header"
+# The cost table: each integral's reference (default tolerance) against its fast default, as the
+# CSV measured them (times to the 3 digits printed, errors to 2), and the three summed.
+checks=$((checks + 1))
+/usr/bin/python3 - "$tmp/out" "$tmp/map.csv" <<'PY' || fail "bench lighting-map: the cost table is not the CSV's"
+import csv, re, sys
+text, rows = open(sys.argv[1]).read(), list(csv.DictReader(open(sys.argv[2])))
+table = text.split("**Cost and error: reference at tolerance 1e-06 vs fast at the default orders")[1]
+lines = [l for l in table.splitlines() if l.startswith("| ") and not l.startswith("| integral")]
+unit = {"s": 1, "ms": 1e-3, "µs": 1e-6, "ns": 1e-9}
+seconds = lambda s: float(s.split()[0]) * unit[s.split()[1]]
+near = lambda a, b, rel: abs(a - b) <= rel * abs(b)
+ok, total = len(lines) == 4, [0.0, 0.0]
+for line, (name, fast) in zip(lines, (("reflected_sky", "4x4"), ("mean_fresnel", "4x4"), ("sun_disk", "2x8"))):
+    cells = [c.strip() for c in line.strip("|").split("|")]
+    f = next(r for r in rows if r["integral"] == name and r["mode"] == "fast" and r["setting"] == fast)
+    r = next(r for r in rows if r["integral"] == name and r["mode"] == "reference" and float(r["setting"]) == 1e-6)
+    tf, tr = float(f["seconds_per_integral"]), float(r["seconds_per_integral"])
+    total = [total[0] + tf, total[1] + tr]
+    errors = [float(x) for x in re.split(r" / ", cells[4]) + re.split(r" / ", cells[5])]
+    want = [float(f["p95_relative_error"]), float(f["max_relative_error"]),
+            float(r["p95_relative_error"]), float(r["max_relative_error"])]
+    ok &= near(seconds(cells[1]), tf, 6e-3) and near(seconds(cells[2]), tr, 6e-3)
+    ok &= near(float(cells[3]), tr / tf, 6e-3)
+    ok &= all(near(e, w, 0.06) for e, w in zip(errors, want))
+cells = [c.strip() for c in lines[-1].strip("|").split("|")]
+ok &= cells[0].startswith("all three") and near(seconds(cells[1]), total[0], 6e-3)
+ok &= near(seconds(cells[2]), total[1], 6e-3) and near(float(cells[3]), total[1] / total[0], 6e-3)
+sys.exit(0 if ok else 1)
+PY
 [ "$(grep -c '^reflected_sky,' "$tmp/map.csv")" -eq 6 ] ||
   fail "bench lighting-map --quick: not 3 fast orders and 3 tolerances for the sky"
 head -c 4 "$tmp/map.svg" | grep -q '<svg' || fail "bench lighting-map --svg is not an SVG"
@@ -912,7 +965,10 @@ for line in "rendering 96x54 at 1 spp, tile 1 of 3 (rows 18 to 35)" "writing $tm
     fail "render --tile, merge on a terminal: no progress line '$line': $(tr -d '\r' <"$tmp/tty" | grep '^oceanref')"
 done
 expect 2 '^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got .3/3.$' render "$scene" --tile 3/3 -o "$tmp/x.piece"
-expect 2 '^oceanref: --tile: expected I/N' render "$scene" --tile 1 -o "$tmp/x.piece"
+for tile in 1 a/3 -1/3 1/-3 ' 1/3' 1/3x 1234567890/3 1/0 1/65537 1/2/3 /3 1/; do
+  expect 2 "^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got '$tile'$" \
+    render "$scene" --tile "$tile" -o "$tmp/x.piece"
+done
 expect 2 '^oceanref: --tile: N must be <= the image.s 54 rows, got 55$' render "$scene" --tile 0/55 -o "$tmp/x.piece"
 expect 2 '^oceanref: --png: not with --tile' render "$scene" --tile 0/2 --png "$tmp/x.png" -o "$tmp/x.piece"
 expect 2 '^oceanref: tile 0 of 3 is missing$' merge "$scene" "$tmp/tile1.piece" "$tmp/tile2.piece" -o "$tmp/x.exr"

@@ -1266,6 +1266,39 @@ def compare_report_single_parts():
 compare_report_single_parts()
 
 
+def compare_suggest_refusals():
+    """compare --suggest refuses runs no threshold can accept, naming the run and the channel: a
+    NaN against a number, a difference where the golden is 0 (with --floor 0), and a candidate
+    with a channel the golden does not have. Run 1 is the golden against itself."""
+    with tempfile.TemporaryDirectory() as tmp:
+        g = np.full((4, 6, 3), 2.0, np.float32)
+        gp = os.path.join(tmp, "g.exr")
+        write_rgb(gp, g)
+        nan, zero = g.copy(), g.copy()
+        nan[1, 2, 1] = np.nan
+        g0 = g.copy()
+        g0[3, 5, 2] = 0.0
+        zero[3, 5, 2] = 1e-3
+        cases = (("nan.exr", nan, gp, "^oceanref: --suggest: run 2: channel 'G' has 1 non-finite "
+                  "mismatches: no threshold accepts them$"),
+                 ("zero.exr", zero, os.path.join(tmp, "g0.exr"),
+                  "^oceanref: --suggest: run 2: channel 'B' differs where the golden is 0: raise "
+                  "--floor$"),
+                 ("other.exr", g, gp, "^oceanref: compare: \\(unnamed part\\): candidate channel\\(s\\) "
+                  "'X' have no counterpart among the golden's 'B', 'G', 'R'"))
+        write_rgb(os.path.join(tmp, "g0.exr"), g0)
+        for name, pixels, golden, message in cases:
+            path = os.path.join(tmp, name)
+            write_rgb(path, pixels, names=("R", "G", "X") if name == "other.exr" else ("R", "G", "B"))
+            r = subprocess.run([binary, "compare", "--suggest", "--floor", "0", golden, path, golden],
+                               capture_output=True, text=True)
+            check(r.returncode == 2 and re.search(message, r.stderr.strip()) is not None,
+                  f"compare --suggest g.exr {name}: exit {r.returncode}, {r.stderr.strip()!r}")
+
+
+compare_suggest_refusals()
+
+
 # --- render, fields, acf: each flag equals the scene setting it stands for, or its definition ----
 
 def report(*args):

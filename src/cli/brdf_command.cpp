@@ -119,16 +119,6 @@ std::function<void(std::ostream&)> add_brdf_command(CLI::App& app) {
                          "--tolerance)");
       }
     }
-    if (!(f->tolerance >= kMinLightingTolerance && f->tolerance <= kMaxLightingTolerance)) {
-      throw UsageError("--tolerance",
-                       "must be in [1e-10, 1e-2], got " + format_number(f->tolerance));
-    }
-    if (f->order < 1 || f->order > kMaxQuadratureOrder) {
-      throw UsageError("--order", "must be in [1, 1024], got " + std::to_string(f->order));
-    }
-    if (f->sun_order < 0 || f->sun_order > 256) {
-      throw UsageError("--sun-order", "must be in [0, 256], got " + std::to_string(f->sun_order));
-    }
     shading.tolerance = f->tolerance;
     shading.sky_order = f->order;
     shading.sun_order = f->sun_order;

@@ -120,7 +120,7 @@ void print_gerstner_loops(std::ostream& out, const Scene& scene) {
   if (!c.sampled) return;
   out << "gerstner_min_jacobian," << format_number(c.loops.min_jacobian) << '\n';
   out << "gerstner_folded_fraction," << format_number(c.loops.folded_fraction) << '\n';
-  if (c.loops.min_jacobian < 0.0) {
+  if (c.loops.folded_fraction > 0.0) {  // some lattice point has det J < 0
     warn("oceanref",
          "the Gerstner waves loop (|u| sum k A = " + format_number(c.steepness_bound) +
              " >= 1): det J < 0 on " + format_number(100.0 * c.loops.folded_fraction) + "% of a " +

@@ -156,9 +156,6 @@ std::function<void(std::ostream&)> add_sky_command(CLI::App& app) {
           << format_number(e.rgb[1]) << ',' << format_number(e.rgb[2]) << ','
           << format_number(e.relative_error) << '\n';
     } else if (flags->size != 0 || !flags->output.empty()) {
-      if (flags->size < 1 || flags->size > 8192) {
-        throw UsageError("--size", "must be in [1, 8192], got " + std::to_string(flags->size));
-      }
       write_hemisphere(flags->output, sky, flags->size, form);
     } else {
       throw UsageError("sky", "give one of --dir, --sun, --irradiance or --size N -o sky.exr");
