@@ -162,6 +162,26 @@ TEST_CASE("footprint filter: a footprint on the table's nodes reads that node, i
     CHECK(read.upwind == doctest::Approx(node.upwind).epsilon(1e-6));
     CHECK(read.crosswind == doctest::Approx(node.crosswind).epsilon(1e-6));
   }
+  // Past the last direction node (j = 15) the half-turn wraps to node 0: halfway between them
+  // (j = 15.5) the reading is their mean.
+  const auto at = [&](int r, int q, int j) {
+    return f.variance.values[static_cast<std::size_t>((r * 9 + q) * 16 + j)];
+  };
+  const double major = std::ldexp(r1_squared, 2), minor = std::ldexp(major, -8);
+  for (const double j : {15.0, 15.5}) {
+    CAPTURE(j);
+    const double angle = 0.7 + std::numbers::pi * j / 16.0;
+    const double c = std::cos(angle), s = std::sin(angle);
+    const Footprint fp{major * c * c + minor * s * s, (major - minor) * c * s,
+                       major * s * s + minor * c * c};
+    const double w = j - 15.0;
+    const SlopeVariance read = footprint_slope_variance(f, fp);
+    CHECK(read.upwind ==
+          doctest::Approx((1.0 - w) * at(8, 4, 15).upwind + w * at(8, 4, 0).upwind).epsilon(1e-6));
+    CHECK(read.crosswind ==
+          doctest::Approx((1.0 - w) * at(8, 4, 15).crosswind + w * at(8, 4, 0).crosswind)
+              .epsilon(1e-6));
+  }
 }
 
 TEST_CASE("footprint filter: every level is the Gaussian-filtered spectrum, summed exactly") {

@@ -301,10 +301,10 @@ TEST_CASE("spectral tables: linear interpolation between the published wavelengt
   CHECK(interpolate(kWaterVapourAbsorption, 695.0) == doctest::Approx(0.020).epsilon(1e-14));
 }
 
-TEST_CASE("absorption tables: a second public transcription of Iqbal's tables, entry by entry") {
-  // Preetham's sample code as published in Sunflow (src/org/sunflow/core/light/SunSkyLight.java,
-  // k_o, k_g and k_wa "from pg 127, 130, MI"): the same decimal numbers, so every wavelength and
-  // value must be the same double; a typo in either transcription shows here.
+TEST_CASE("solar and absorption tables: a second public transcription, entry by entry") {
+  // Preetham's sample code as published in Sunflow (src/org/sunflow/core/light/SunSkyLight.java:
+  // the solar table, and k_o, k_g and k_wa "from pg 127, 130, MI"): the same decimal numbers, so
+  // every wavelength and value must be the same double; a typo in either transcription shows.
   struct Table {
     const std::vector<SpectralPoint>* ours;
     std::vector<double> wavelengths, values;
@@ -326,6 +326,17 @@ TEST_CASE("absorption tables: a second public transcription of Iqbal's tables, e
        {0, 0.160e-1, 0.240e-1, 0.125e-1, 0.100e+1, 0.870, 0.610e-1, 0.100e-2, 0.100e-4, 0.100e-4,
         0.600e-3, 0.175e-1, 0.360e-1}},
   };
+  // The extraterrestrial solar radiance, 380-750 nm every 10 nm (its "solAmplitudes", in
+  // 100 W/(m^2 nm sr)).
+  const std::vector<double> solar{
+      165.5, 162.3, 211.2, 258.8, 258.2, 242.3, 267.6, 296.6, 305.4, 300.6, 306.6, 288.3, 287.1,
+      278.2, 271.0, 272.3, 263.6, 255.0, 250.6, 253.1, 253.5, 251.3, 246.3, 241.7, 236.8, 232.1,
+      228.2, 223.4, 219.7, 215.3, 211.0, 207.3, 202.4, 198.7, 194.3, 190.7, 186.3, 182.6};
+  REQUIRE(kExtraterrestrialSolarRadiance.size() == solar.size());
+  for (std::size_t i = 0; i < solar.size(); ++i) {
+    CAPTURE(380 + 10 * i);
+    CHECK(kExtraterrestrialSolarRadiance[i] == solar[i]);
+  }
   for (const Table& table : tables) {
     REQUIRE(table.ours->size() == table.wavelengths.size());
     REQUIRE(table.values.size() == table.wavelengths.size());

@@ -413,6 +413,15 @@ TEST_CASE("spectrum settings: JONSWAP beyond its fitted fetch is refused, the li
                        SettingError);
   in.allow_extrapolation = true;
   CHECK_NOTHROW(make_spectrum(in));
+  // Exactly at the limit (g = 1 m/s², U10 = 10 m/s, F = 1e6 m: gF/U10² = 1e4 exactly) it is
+  // refused, an ulp below it accepted: the bound is exclusive, as stated.
+  in.allow_extrapolation = false;
+  in.gravity = 1.0;
+  in.wind_speed = 10.0;
+  in.fetch = 1e6;
+  CHECK_THROWS_AS(make_spectrum(in), SettingError);
+  in.fetch = std::nextafter(1e6, 0.0);
+  CHECK_NOTHROW(make_spectrum(in));
 }
 
 TEST_CASE("spectrum settings: one that does not apply to the model is refused under its key") {
