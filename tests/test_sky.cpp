@@ -185,6 +185,40 @@ TEST_CASE("sun: luminance at the zenith sun is the published ~1.6e9 cd/m^2; it r
         doctest::Approx(rayleigh_transmittance(500.0, 1.0, TransmittanceForm::physical)));
 }
 
+TEST_CASE("transmittances: Iqbal's formulas (Preetham A.5), written out with libm") {
+  // In each absorption band and at two air masses: τ_o = exp(−k_o l m) with l = 0.35 cm,
+  // τ_g = exp(−1.41 k_g m / (1 + 118.93 k_g m)^0.45), τ_wa = exp(−0.2385 k_wa w m /
+  // (1 + 20.07 k_wa w m)^0.45) with w = 2 cm; Rayleigh and aerosol physical (m in front) and as
+  // printed (m in the exponent). The tables' values: k_o(600) = 0.125, k_g(765) = 1.605 (midway
+  // between 3.0 and 0.21), k_wa(730) = 0.87. Outside a band its transmittance is exactly 1.
+  // Tolerance 1e-13: a few ulps of the exponent, well below any term (the O₂ band lies beyond
+  // the solar table's 750 nm, so only this test sees τ_g).
+  const double beta = angstrom_beta(3.0);
+  for (const double m : {1.0, 2.5}) {
+    CAPTURE(m);
+    CHECK(ozone_transmittance(600.0, m) ==
+          doctest::Approx(std::exp(-0.125 * 0.35 * m)).epsilon(1e-13));
+    const double kg = 1.605 * m;
+    CHECK(mixed_gas_transmittance(765.0, m) ==
+          doctest::Approx(std::exp(-1.41 * kg / std::pow(1.0 + 118.93 * kg, 0.45))).epsilon(1e-13));
+    const double kw = 0.87 * 2.0 * m;
+    CHECK(
+        water_vapour_transmittance(730.0, m) ==
+        doctest::Approx(std::exp(-0.2385 * kw / std::pow(1.0 + 20.07 * kw, 0.45))).epsilon(1e-13));
+    CHECK(rayleigh_transmittance(450.0, m, TransmittanceForm::physical) ==
+          doctest::Approx(std::exp(-m * 0.008735 * std::pow(0.45, -4.08))).epsilon(1e-13));
+    CHECK(rayleigh_transmittance(450.0, m, TransmittanceForm::printed) ==
+          doctest::Approx(std::exp(-0.008735 * std::pow(0.45, -4.08 * m))).epsilon(1e-13));
+    CHECK(aerosol_transmittance(450.0, m, beta, TransmittanceForm::physical) ==
+          doctest::Approx(std::exp(-m * beta * std::pow(0.45, -1.3))).epsilon(1e-13));
+    CHECK(aerosol_transmittance(450.0, m, beta, TransmittanceForm::printed) ==
+          doctest::Approx(std::exp(-beta * std::pow(0.45, -1.3 * m))).epsilon(1e-13));
+    CHECK(ozone_transmittance(290.0, m) == 1.0);
+    CHECK(mixed_gas_transmittance(700.0, m) == 1.0);
+    CHECK(water_vapour_transmittance(600.0, m) == 1.0);
+  }
+}
+
 TEST_CASE("sky irradiance: adaptive quadrature converges and agrees with a plain product rule") {
   const Sky sky = make_sky(3.0, 40.0 * kDeg, 1.0);
   const SkyIrradiance fine = sky_irradiance(sky, 1e-10);

@@ -110,8 +110,7 @@ double band_direction_moment(const Spectrum& s, double k_lo, double k_hi,
   for (const double k : wavenumber_breakpoints(s, k_hi)) {
     if (k > k_lo && k < k_hi) b.push_back(k);
   }
-  b.push_back(k_hi);
-  if (std::isinf(k_hi) && !(b[b.size() - 2] > 0.0)) b.insert(b.end() - 1, 1.0);
+  b.push_back(k_hi);  // a band to ∞ keeps a finite breakpoint: k_lo > 0 or k_p·2⁻⁶
   QuadratureTolerance inner = tolerance;
   inner.relative = tolerance.relative * 0.1;
   inner.absolute = inner_absolute;
