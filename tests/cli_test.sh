@@ -22,6 +22,18 @@ fail() {
 
 # expect CODE PATTERN ARGS... : exit code CODE; stderr (for CODE 2: exactly one line) matches the
 # extended regex PATTERN; on an error, stdout is empty.
+# tty_lines WHO LINE...: each LINE, prefixed "WHO: ", is a whole line of $tmp/tty (a run under
+# script(1), whose lines end in CR LF).
+tty_lines() {
+  local who=$1 line
+  shift
+  for line in "$@"; do
+    checks=$((checks + 1))
+    tr -d '\r' <"$tmp/tty" | grep -qxF "$who: $line" ||
+      fail "$who on a terminal: no progress line '$line': $(tr -d '\r' <"$tmp/tty" | grep "^$who")"
+  done
+}
+
 expect() {
   local code=$1 pattern=$2
   shift 2
@@ -957,13 +969,9 @@ grep -q '^rows,18,36$' "$tmp/out" || fail "render --tile 1/3 of 54 rows did not 
 script -qec "'$bin_path' render '$scene' --tile 1/3 -o '$tmp/t.piece'" /dev/null >"$tmp/tty" 2>&1
 script -qec "'$bin_path' merge '$scene' '$tmp/tile0.piece' '$tmp/tile1.piece' '$tmp/tile2.piece' \
   -o '$tmp/merged_tty.exr'" /dev/null >>"$tmp/tty" 2>&1
-for line in "rendering 96x54 at 1 spp, tile 1 of 3 (rows 18 to 35)" "writing $tmp/t.piece" \
-  "reading $tmp/tile0.piece" "reading $tmp/tile1.piece" "reading $tmp/tile2.piece" \
-  "writing $tmp/merged_tty.exr"; do
-  checks=$((checks + 1))
-  tr -d '\r' <"$tmp/tty" | grep -qxF "oceanref: $line" ||
-    fail "render --tile, merge on a terminal: no progress line '$line': $(tr -d '\r' <"$tmp/tty" | grep '^oceanref')"
-done
+tty_lines "oceanref" "rendering 96x54 at 1 spp, tile 1 of 3 (rows 18 to 35)" \
+  "writing $tmp/t.piece" "reading $tmp/tile0.piece" "reading $tmp/tile1.piece" \
+  "reading $tmp/tile2.piece" "writing $tmp/merged_tty.exr"
 expect 2 '^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got .3/3.$' render "$scene" --tile 3/3 -o "$tmp/x.piece"
 for tile in 1 a/3 -1/3 1/-3 ' 1/3' 1/3x 1234567890/3 1/0 1/65537 1/2/3 /3 1/; do
   expect 2 "^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got '$tile'$" \
@@ -1012,18 +1020,10 @@ checks=$((checks + 1))
 script -qec "'$bin_path' acf '$tmp/acf_periodic.json' '$tmp/acf_tiled.json' --lines 16 --length 1 \
   --samples-per-period 2 -o '$tmp/acf_tty.csv'" /dev/null >"$tmp/tty" 2>&1
 for scene in acf_periodic acf_tiled; do
-  for line in "synthesizing $tmp/$scene.json" "sampling 16 lines of $tmp/$scene.json"; do
-    checks=$((checks + 1))
-    tr -d '\r' <"$tmp/tty" | grep -qxF "oceanref acf: $line" ||
-      fail "acf on a terminal: no progress line '$line': $(cat "$tmp/tty")"
-  done
+  tty_lines "oceanref acf" "synthesizing $tmp/$scene.json" "sampling 16 lines of $tmp/$scene.json"
 done
 script -qec "'$bin_path' fields '$tmp/acf_periodic.json' -o '$tmp/acf_fields.exr'" /dev/null >"$tmp/tty" 2>&1
-for line in "realizing the spectrum" "writing $tmp/acf_fields.exr"; do
-  checks=$((checks + 1))
-  tr -d '\r' <"$tmp/tty" | grep -qxF "oceanref fields: $line" ||
-    fail "fields on a terminal: no progress line '$line': $(cat "$tmp/tty")"
-done
+tty_lines "oceanref fields" "realizing the spectrum" "writing $tmp/acf_fields.exr"
 expect 2 '--length: must be in \[0.03125, 1024\]' acf "$tmp/acf_periodic.json" --length 0 -o "$tmp/acf_bad.csv"
 checks=$((checks + 1))
 [ -e "$tmp/acf_bad.csv" ] && fail "acf --length 0 wrote a file"
