@@ -107,6 +107,11 @@ expect 2 '--model.*phillips, pierson-moskowitz' spectrum --model foo --omega 1
 # Beyond 1e6 rad/m the moments' integrands overflow (and no spectrum is defined there).
 expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 1e308
 expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 0.01
+# k_max = inf: the slope moments of a k⁻³ tail diverge (refused, naming the integral); Phillips'
+# small-wave cutoff makes them finite.
+expect 2 '^oceanref: --k-max: mss_x did not converge .*k⁻³ tail.* \(k_max = inf\)$' spectrum \
+  --model jonswap --moments --k-max inf
+expect 0 '^m0,Hs,mss_x,mss_z,mss$' spectrum --model phillips --moments --k-max inf
 expect 2 '--spreading.*donelan-banner' spectrum --model jonswap --spreading cos3 --omega 1
 expect 2 '--dispersion.*finite-depth' spectrum --model jonswap --dispersion shallow --omega 1
 # Every choice is parsed from its enum's one table (core/choice.h): the flag, the valid names,
@@ -723,6 +728,9 @@ expect 0 '^result: pass' compare "$tmp/gold.exr" "$tmp/gold_h0.exr"
 expect 2 'SCENE.*waves.spectrum.model: unified is not supported' bench float32 \
   "$root/reference/scenes/golden/unified_capillary_horizon_sun.json" -o "$tmp/x.exr"
 [ ! -e "$tmp/x.exr" ] || fail "a refused float32 run left an output file"
+# A scene file that cannot be loaded is refused as SCENE, before anything runs.
+expect 2 "^oceanref: SCENE: .*nope[.]json: cannot open the scene file$" bench float32 \
+  "$tmp/nope.json" -o "$tmp/x.exr"
 profile=$root/reference/profiles/fields_float32.json
 "$bin" bench float32 "$root/reference/scenes/golden/pm_high_sun.json" --time 2.5 -o "$tmp/f32.exr" \
   --golden "$tmp/gold.exr" >/dev/null 2>&1
@@ -849,6 +857,39 @@ expect 2 "^oceanref: --only: no scene named 'nope' in .*reference/golden/manifes
 # An empty name (a trailing comma) is a name too, not silently dropped.
 expect 2 "^oceanref: --only: no scene named '' in " \
   golden verify --root "$root/reference" --only default_small,
+# A copy of one golden whose manifest has a wrong hash: verify prints MISMATCH, the key that
+# differs and the comparison with the stored image (same pixels: 0% failing), and exits 1;
+# `update --yes` rewrites the entry into exactly the shipped one; verify then passes.
+gold=$tmp/golden_copy
+gname=mastin_spread_direct_tiny
+mkdir -p "$gold/golden" "$gold/scenes/golden"
+cp "$root/reference/scenes/golden/$gname.json" "$gold/scenes/golden/"
+cp "$root/reference/golden/$gname.exr" "$root/reference/golden/$gname.fields.exr" "$gold/golden/"
+python3 - "$root/reference/golden/manifest.json" "$gold/golden/manifest.json" "$gname" <<'EOF'
+import json, sys
+m = json.load(open(sys.argv[1]))
+m["entries"] = [e for e in m["entries"] if e["name"] == sys.argv[3]]
+m["entries"][0]["radiance_f64_sha256"] = "0" * 64
+json.dump(m, open(sys.argv[2], "w"), indent=2)
+EOF
+ghash=$(python3 -c "import json, sys; print(next(e['pixel_sha256'] for e in json.load(open(sys.argv[1]))['entries'] if e['name'] == sys.argv[2]))" "$root/reference/golden/manifest.json" "$gname")
+checks=$((checks + 1))
+"$bin" golden verify --root "$gold" --threads 2 >"$tmp/out" 2>"$tmp/err"
+got=$?
+[ "$got" -eq 1 ] || fail "golden verify of a wrong hash exited $got, expected 1"
+for line in "$gname,MISMATCH,$ghash" "# differs: radiance_f64_sha256" \
+  "part (single), 48x27: pass, failing pixels 0%" "result: pass"; do
+  checks=$((checks + 1))
+  grep -qxF "$line" "$tmp/out" || fail "golden verify of a wrong hash: no line '$line': $(cat "$tmp/out")"
+done
+expect 0 "^$gname,updated,$ghash\$" golden update --root "$gold" --yes --threads 2
+checks=$((checks + 1))
+python3 -c "import json, sys
+a, b = (json.load(open(p))['entries'] for p in sys.argv[1:3])
+sys.exit(a != [e for e in b if e['name'] == sys.argv[3]])" "$gold/golden/manifest.json" \
+  "$root/reference/golden/manifest.json" "$gname" ||
+  fail "golden update did not restore the shipped manifest entry: $(cat "$gold/golden/manifest.json")"
+expect 0 "^$gname,identical,$ghash\$" golden verify --root "$gold" --threads 2
 expect 2 "^oceanref: --size: must be in \[1, 8192\], got '0'" sky --sun-zenith-deg 10 --size 0 -o "$tmp/strict.exr"
 expect 2 "^oceanref: --size: expected an integer in \[1, 8192\], got '4x'" sky --sun-zenith-deg 10 --size 4x -o "$tmp/strict.exr"
 expect 2 "^oceanref: --resolution: expected an integer in \[4, 4096\] \(a power of two\), got 'x'" bench synthesis --resolution x
@@ -933,6 +974,22 @@ expect 2 "^oceanref: needs an estimated 14[0-9](\.[0-9])? MiB of memory \(larges
 # The per-pixel layers of --aov (sun, sky, sea, foam, depth, normal, x0) are counted only when asked.
 expect 2 "^oceanref: needs an estimated 2[0-9][0-9](\.[0-9])? MiB of memory \(largest: pixel buffers \(render.width x render.height\) 116 MiB," render "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 128M --aov
 [ -e "$tmp/refused.exr" ] && fail "a render refused for memory wrote its output"
+# An allocation the estimate allows but the machine refuses (an address-space limit of 586 MiB,
+# a job of about 6 GiB with --max-memory raised): one line naming the peak resident memory (its
+# unit right: above the program's own ~10 MiB, below the limit), exit 2, no output file. Not
+# under AddressSanitizer, whose shadow memory cannot start under such a limit.
+if [ -z "${OCEANREF_SANITIZED:-}" ]; then
+  sed 's/"resolution": 128/"resolution": 2048/' "$tmp/memory.json" >"$tmp/memory2048.json"
+  checks=$((checks + 1))
+  (ulimit -v 600000 && exec "$bin" fields "$tmp/memory2048.json" -o "$tmp/refused.exr" \
+    --max-memory 64G --threads 1) >"$tmp/out" 2>"$tmp/err"
+  got=$?
+  oom_mib=$(sed -n 's/^oceanref: out of memory: an allocation failed (peak resident memory \([0-9.]*\) MiB); free memory, or lower the resolution, the sample count or --max-memory$/\1/p' "$tmp/err")
+  [ "$got" -eq 2 ] && [ -n "$oom_mib" ] && [ ! -s "$tmp/out" ] &&
+    awk -v m="$oom_mib" 'BEGIN { exit !(m > 10 && m < 586) }' ||
+    fail "fields under a 586 MiB limit: exit $got, stderr '$(cat "$tmp/err")' (expected exit 2, the out-of-memory line)"
+  [ -e "$tmp/refused.exr" ] && fail "a run out of memory wrote its output"
+fi
 expect 2 "^oceanref: needs an estimated .* MiB of memory \(largest: wave grids \(waves.resolution, waves.low_resolution, waves.cascades\) .*over the limit of 16 MiB; raise it with --max-memory" fields "$tmp/memory.json" -o "$tmp/refused.exr" --max-memory 16M
 expect 2 "^oceanref: CANDIDATE: .*memory.exr: cannot read the EXR file: part 0: 1024 x 512 pixels of 3 channels need 6 MiB, over the 3.8 MiB left of the reading limit \(--max-memory\)" compare "$tmp/memory.exr" "$tmp/memory.exr" --max-memory 16M
 expect 0 'pass, failing pixels 0%' compare "$tmp/memory.exr" "$tmp/memory.exr" --max-memory 32M

@@ -1695,6 +1695,55 @@ def acf_plot(single, tmp):
           f"acf --map: grey is not 1/2 + eta/(6 sigma) to rounding: {255 * (g - k * eta)}")
 
 
+def unconverged_samples_counted():
+    """render's unconverged_samples (and its warning) against `probe`. A calm sea seen at the
+    horizon, its spectrum cut at the grid's waves (waves.minimum_wavelength), so that the
+    unresolved slope variance is near its floor (crosswind 1e-10) and the lighting lobes are
+    needle-thin at grazing views: at the tightest tolerance (1e-10) a few of the 32 x 16
+    samples miss it. A missed integral's error exceeds the tolerance relative to its value, so
+    those pixels are among the ones whose lighting_error exceeds it relative to theirs (3, the
+    next below at 1e-10 itself); `probe` of each says which of them did not converge."""
+    with tempfile.TemporaryDirectory() as tmp:
+        scene = {"seed": 3,
+                 "waves": {"spectrum": {"model": "jonswap", "wind_speed": 3, "fetch": 1000},
+                           "cascades": {"sizes": [20]}, "resolution": 64,
+                           "minimum_wavelength": 2},
+                 "camera": {"position": [0, 0.3, 0], "look_at": [0, 0.3, 1000],
+                            "vertical_fov_deg": 6},
+                 "grid": {"columns": 64, "rows": 64}, "atmosphere": {"sun_zenith_deg": 60},
+                 "shading": {"accuracy": "reference", "tolerance": 1e-10},
+                 "render": {"width": 32, "height": 16, "samples_per_pixel": 1}}
+        path, out = os.path.join(tmp, "calm.json"), os.path.join(tmp, "calm.exr")
+        json.dump(scene, open(path, "w"))
+        counts = []
+        for threads in (1, 2):
+            r = subprocess.run([binary, "render", path, "-o", out, "--aov", "--threads",
+                                str(threads)], capture_output=True, text=True)
+            printed = dict(line.split(",", 1) for line in r.stdout.splitlines() if "," in line)
+            counts.append(int(printed.get("unconverged_samples", "-1")))
+            check(r.returncode == 0 and r.stderr == (
+                f"oceanref: warning: {counts[-1]} samples missed the lighting tolerance (their "
+                "error estimates are in --aov lighting_error)\n"),
+                f"render of a calm sea at 1e-10, {threads} threads: exit {r.returncode}, "
+                f"stderr {r.stderr!r}")
+        layers = read_layers(out)
+        error = np.stack([layers["lighting_error." + c] for c in "RGB"], axis=-1)
+        value = np.stack([layers[c] for c in "RGB"], axis=-1)
+        relative = (error / value).max(axis=-1)
+        candidates = np.argwhere(relative > 1e-10)
+        below = np.unravel_index(np.argmax(np.where(relative > 1e-10, 0, relative)),
+                                 relative.shape)
+        probed = []
+        for row, column in [*candidates, below]:
+            samples = oceanref("probe", path, "--pixel", f"{column},{row}", "--threads", "1")
+            probed.append(sum(s["converged"] == "0" for s in samples if s["sample"] != "pixel"))
+        check(counts[0] == counts[1] == sum(probed[:-1]) > 0 and probed[-1] == 0 and
+              len(candidates) <= 8,
+              f"unconverged_samples {counts} (1 and 2 threads); probe: {probed} unconverged at "
+              f"{candidates.tolist()} and the next pixel {below}")
+
+
+unconverged_samples_counted()
 render_fields_acf_flags()
 
 
