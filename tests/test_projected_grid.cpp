@@ -119,6 +119,52 @@ TEST_CASE("projected grid: a frustum that cannot see the sea gives no grid") {
   CHECK(project_grid(inside, s).visible);
 }
 
+TEST_CASE("projected grid: a mirror-symmetric view gives a mirror-symmetric grid, edge to edge") {
+  // Vertex (i, j) sits at u = i/(columns − 1), v = j/(rows − 1) of the projector's widened
+  // range (header, step 4), so the first and last columns are its two edges. A view whose
+  // visible sea is mirror-symmetric has a range symmetric about the mirror: level and unrolled,
+  // vertex i mirrors vertex columns − 1 − i about the camera's vertical plane; straight down,
+  // (i, j) mirrors (columns − 1 − i, rows − 1 − j) about the point below the camera. Each (x0,
+  // z0) is a few dozen rounded operations from the same matrices: 1e-9 of the grid's extent.
+  for (const double bound : {0.0, 1.5}) {
+    for (const int columns : {17, 12}) {
+      CAPTURE(bound);
+      CAPTURE(columns);
+      ProjectedGridSettings s;
+      s.columns = columns;
+      s.rows = 9;
+      s.displacement_bound = bound;
+      const auto at = [&](const ProjectedGrid& g, int i, int j) {
+        return g.base[static_cast<std::size_t>(j * columns + i)];
+      };
+      const Camera level = make_camera({0, 3, 0}, {0, 3, 100}, {0, 1, 0}, 50 * kDeg, 64, 36);
+      const ProjectedGrid g = project_grid(level, s);
+      REQUIRE(g.visible);
+      const double width = std::fabs(at(g, columns - 1, 0).x - at(g, 0, 0).x);
+      REQUIRE(width > 1.0);
+      for (int j = 0; j < s.rows; ++j) {
+        for (int i = 0; i < columns; ++i) {
+          const glm::dvec2 a = at(g, i, j), b = at(g, columns - 1 - i, j);
+          CHECK(std::fabs(a.x + b.x) <= 1e-9 * width);
+          CHECK(std::fabs(a.y - b.y) <= 1e-9 * std::fabs(a.y));
+        }
+      }
+      // (The projector may turn the grid's axes looking straight down; the point symmetry holds.)
+      const Camera down = make_camera({3, 20, -4}, {3, 0, -4}, {0, 0, 1}, 60 * kDeg, 64, 36);
+      const ProjectedGrid d = project_grid(down, s);
+      REQUIRE(d.visible);
+      const double extent = glm::length(at(d, columns - 1, s.rows - 1) - at(d, 0, 0));
+      REQUIRE(extent > 1.0);
+      for (int j = 0; j < s.rows; ++j) {
+        for (int i = 0; i < columns; ++i) {
+          const glm::dvec2 sum = at(d, i, j) + at(d, columns - 1 - i, s.rows - 1 - j);
+          CHECK(glm::length(sum - glm::dvec2(6.0, -8.0)) <= 1e-9 * extent);
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("projected grid: the triangles tile the grid cells, two per cell, row by row") {
   ProjectedGrid g;
   g.visible = true;

@@ -123,7 +123,7 @@ TEST_CASE("strict parsing: nesting deeper than 64 levels is refused at its path"
   const auto nested = [](std::size_t depth) {
     return R"({"seed": 1, "extra": )" + std::string(depth, '[') + std::string(depth, ']') + "}";
   };
-  CHECK(scene_error(nested(62)).find("nested more than") == std::string::npos);
+  CHECK(scene_error(nested(63)).find("nested more than") == std::string::npos);
   const std::string deep = scene_error(nested(64));
   CHECK(deep.find("nested more than 64 objects or arrays deep") != std::string::npos);
   CHECK(deep.rfind("extra[0][0]", 0) == 0);

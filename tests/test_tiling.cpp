@@ -334,7 +334,18 @@ TEST_CASE("tiling and blending, noise blend: the surface stays within its proven
     const DisplacedSurfaceBounds b =
         displaced_surface_bounds(t.ocean, t.fields, {}, Interpolation::bicubic);
     if (t.ocean.synthesis == Synthesis::tiling_and_blending) {
-      CHECK(b.offset[1] == doctest::Approx(std::sqrt(3.0) * e.offset[1]));
+      // The header's bounds from the periodic ocean's (M, L) written out: a tile turned by the
+      // flow mixes D_x and D_z (M = √(M_x² + M_z²), L = L_x + L_z); the blend of three tiles
+      // gives √3 M and √3 L + (12/a) M, a the tiles' edge.
+      const double root3 = std::sqrt(3.0), g = 12.0 / t.ocean.tiling.edge;
+      const bool turned = t.ocean.tiling.flow.kind != FlowKind::none;
+      const double m = turned ? std::hypot(e.offset[0], e.offset[2]) : e.offset[0];
+      const double l = turned ? e.lipschitz[0] + e.lipschitz[2] : e.lipschitz[0];
+      CHECK(b.offset[0] == doctest::Approx(root3 * m).epsilon(1e-14));
+      CHECK(b.lipschitz[0] == doctest::Approx(root3 * l + g * m).epsilon(1e-14));
+      CHECK(b.offset[1] == doctest::Approx(root3 * e.offset[1]).epsilon(1e-14));
+      CHECK(b.lipschitz[1] == doctest::Approx(root3 * e.lipschitz[1] + g * e.offset[1]));
+      if (turned) CHECK((b.offset[2] == b.offset[0] && b.lipschitz[2] == b.lipschitz[0]));
     }
     std::array<double, 3> largest_slope{}, largest_offset{};
     for (std::uint64_t i = 0; i < 20000; ++i) {

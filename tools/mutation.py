@@ -60,6 +60,7 @@ time. The run's details go to WORK/results.json.
 import argparse
 import collections
 import concurrent.futures
+import fcntl
 import hashlib
 import json
 import os
@@ -689,6 +690,16 @@ def main():
     if subprocess.run(["git", "-C", ROOT, "diff", "--quiet", "HEAD", "--", "src", "tests"]).returncode:
         print("mutation: note: uncommitted changes in src/ or tests/ are not tested (HEAD is)",
               file=sys.stderr)
+    # One command at a time per work directory: each resets the tree there to HEAD and rebuilds
+    # it, which under a running mutant would test the unmutated code in its place. (The lock is
+    # held until this process exits.)
+    os.makedirs(work, exist_ok=True)
+    lock = open(os.path.join(work, "lock"), "w")
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        sys.exit(f"mutation: another tools/mutation.py command is using {work} (it resets and "
+                 "rebuilds the tree there); wait for it to finish or pass another --work")
     begin = time.time()
     tree, build, head = prepare(work)
     order = draw_order(all_candidates(tree), args.seed)
