@@ -1671,9 +1671,14 @@ def acf_plot(single, tmp):
     # pixels.
     image = oiio.ImageInput.open(map_path)
     spec = image.spec()
-    grey = np.rint(image.read_image(0, 0, 0, 1, "float")[:, :, 0] * 255)
+    rgb = np.rint(image.read_image(0, 0, 0, spec.nchannels, "float") * 255)
     image.close()
-    check((spec.width, spec.height) == (40, 16), f"acf --map: {spec.width} x {spec.height}")
+    check((spec.width, spec.height, spec.nchannels) == (40, 16, 3),
+          f"acf --map: {spec.width} x {spec.height} x {spec.nchannels}")
+    # Grey: R = G = B in every pixel.
+    check(np.array_equal(rgb[:, :, 0], rgb[:, :, 1]) and np.array_equal(rgb[:, :, 0], rgb[:, :, 2]),
+          "acf --map: a pixel is not grey (R, G, B differ)")
+    grey = rgb[:, :, 0]
     check(np.all(grey[:, 16:24] == 128), "acf --map: the gap between the maps is not grey 128")
     left, right_map = grey[:, :16], grey[:, 24:]
     check(np.array_equal(left, np.roll(left, 4, axis=0)) and

@@ -16,6 +16,8 @@
 #include "conformance/lean_study.h"
 #include "scene/scene.h"
 #include "shading/lean.h"
+#include "waves/ocean.h"
+#include "waves/surface.h"
 
 using namespace oceanref;
 
@@ -134,6 +136,33 @@ TEST_CASE("LEAN: the Beckmann lobe is a density with its mean and covariance") {
   CHECK(xx == doctest::Approx(s.xx).epsilon(1e-6));
   CHECK(zz == doctest::Approx(s.zz).epsilon(1e-6));
   CHECK(xz == doctest::Approx(s.xz).epsilon(1e-6));
+}
+
+TEST_CASE("LEAN study: the exemplar's mean moments (Lutz eq. 13) are the period's averages") {
+  // Without choppiness the LEAN moments of the direct sums are the slopes and their products:
+  // trigonometric polynomials of degree below 32 (the low band's 32 modes per axis) whose
+  // averages over the period any midpoint rule of more than 32 points per axis gives exactly. So
+  // μ from its 128 × 128 grid equals the mean over another grid (96 × 96, shifted by a third of
+  // a cell) to rounding, and μ_B (a mean slope) is zero to rounding.
+  const Scene scene = parse_scene(lean_scene({{"choppiness", 0}}));
+  const Ocean ocean = realize_ocean(scene.waves, 2);
+  const std::vector<EvolvedCascade> evolved = evolve_ocean(ocean, 3.5);
+  const double period = 40.0;
+  const LeanMoments mu = exemplar_mean_moments(ocean, {}, evolved, Interpolation::direct, period);
+  std::vector<std::array<double, 3>> normals;
+  for (int j = 0; j < 96; ++j) {
+    for (int i = 0; i < 96; ++i) {
+      normals.push_back(combine_surface_at(ocean, {}, evolved, period * (i + 1.0 / 3.0) / 96,
+                                           period * (j + 1.0 / 3.0) / 96, Interpolation::direct)
+                            .normal);
+    }
+  }
+  const LeanMoments other = mean_moments(normals);
+  const double mss = mu.m[0] + mu.m[1];
+  MESSAGE("exemplar: mu_B " << mu.b[0] << ", " << mu.b[1] << "; mean square slope " << mss);
+  CHECK(mss > 1e-3);
+  for (std::size_t c = 0; c < 2; ++c) CHECK(std::fabs(mu.b[c]) < 1e-12 * std::sqrt(mss));
+  for (std::size_t c = 0; c < 3; ++c) CHECK(mu.m[c] == doctest::Approx(other.m[c]).epsilon(1e-11));
 }
 
 TEST_CASE(

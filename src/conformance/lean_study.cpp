@@ -15,6 +15,7 @@
 #include "shading/lean.h"
 #include "waves/ocean.h"
 #include "waves/random.h"
+#include "waves/surface.h"
 
 namespace oceanref {
 
@@ -141,6 +142,22 @@ FootprintErrors footprint_errors(const Study& st, double cx, double cz, double a
 }
 }  // namespace
 
+LeanMoments exemplar_mean_moments(const Ocean& exemplar, const std::vector<CascadeFields>& fields,
+                                  const std::vector<EvolvedCascade>& evolved, Interpolation mode,
+                                  double period) {
+  constexpr int kMeanGrid = 128;
+  LeanMoments mean;
+  for (int j = 0; j < kMeanGrid; ++j) {
+    for (int i = 0; i < kMeanGrid; ++i) {
+      const double x = period * (i + 0.5) / kMeanGrid, z = period * (j + 0.5) / kMeanGrid;
+      add_moments(mean,
+                  lean_moments(combine_surface_at(exemplar, fields, evolved, x, z, mode).normal));
+    }
+  }
+  scale_moments(mean, 1.0 / (kMeanGrid * kMeanGrid));
+  return mean;
+}
+
 std::vector<LeanStudyRow> lean_study(const Scene& scene, const LeanStudySettings& s) {
   if (s.footprints < 1 || s.samples_per_axis < 2 || !(s.elongation >= 1.0) || s.threads < 1) {
     throw std::invalid_argument(
@@ -163,15 +180,8 @@ std::vector<LeanStudyRow> lean_study(const Scene& scene, const LeanStudySettings
   st.base = 0.5 * (unresolved.upwind + unresolved.crosswind);
   double period = 0.0;
   for (const double size : scene.waves.sizes) period = std::fmax(period, size);
-  // μ_B, μ_M over one period of the exemplar (Lutz eq. 13; with Σ w² = 1 the term cancels).
-  constexpr int kMeanGrid = 128;
-  for (int j = 0; j < kMeanGrid; ++j) {
-    for (int i = 0; i < kMeanGrid; ++i) {
-      add_moments(st.mean, st.moments_at(st.exemplar, period * (i + 0.5) / kMeanGrid,
-                                         period * (j + 0.5) / kMeanGrid));
-    }
-  }
-  scale_moments(st.mean, 1.0 / (kMeanGrid * kMeanGrid));
+  // (Lutz eq. 13; with Σ w² = 1 the term cancels.)
+  st.mean = exemplar_mean_moments(st.exemplar, st.fields, st.evolved, st.mode, period);
   const std::vector<double> sizes = s.footprint_sizes.empty()
                                         ? std::vector<double>{period / 16, period / 4, period}
                                         : s.footprint_sizes;

@@ -31,6 +31,11 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "shading/lean.h"
+#include "waves/direct_sum.h"
+#include "waves/fields.h"
+#include "waves/interpolation.h"
+#include "waves/ocean.h"
 
 namespace oceanref {
 
@@ -52,6 +57,12 @@ struct LeanStudyRow {
 };
 
 // Rows per method and footprint size. Throws std::invalid_argument for bad settings.
+// μ_B, μ_M of Lutz eq. 13: the LEAN moments (lean_moments) of the rendered surface's normal
+// (combine_surface_at) of the periodic `exemplar`, averaged over one period [m] (its largest
+// cascade) by the midpoint rule on a 128 × 128 grid of cell centres.
+LeanMoments exemplar_mean_moments(const Ocean& exemplar, const std::vector<CascadeFields>& fields,
+                                  const std::vector<EvolvedCascade>& evolved, Interpolation mode,
+                                  double period);
 std::vector<LeanStudyRow> lean_study(const Scene& scene, const LeanStudySettings& settings);
 // CSV: method,footprint_m,lobe_error_mean,lobe_error_max,glint_error_mean.
 void bench_lean(std::ostream& out, const std::vector<LeanStudyRow>& rows);
