@@ -235,6 +235,14 @@ TEST_CASE("continuity at every branch point") {
         1e-8);
   CHECK(std::fabs(donelan_gamma(1.0 - eps) - donelan_gamma(1.0)) < 1e-8);
   CHECK(std::fabs(unified_gamma(1.0 - eps) - unified_gamma(1.0)) < 1e-8);
+  // And their values (Gamper §3.4, J_p): γ = 1.7 + 6 log10 Ω_c above 1, σ = 0.08 (1 + 4/Ω_c³).
+  for (const double big_omega : {0.84, 2.5, 5.0}) {
+    CAPTURE(big_omega);
+    const double gamma = big_omega < 1.0 ? 1.7 : 1.7 + 6.0 * std::log10(big_omega);
+    CHECK(unified_gamma(big_omega) == doctest::Approx(gamma).epsilon(1e-14));
+    CHECK(unified_sigma(big_omega) ==
+          doctest::Approx(0.08 * (1.0 + 4.0 / std::pow(big_omega, 3))).epsilon(1e-14));
+  }
   CHECK(std::fabs(unified_short_wave_alpha(0.23 * (1 - eps), 0.23) -
                   unified_short_wave_alpha(0.23 * (1 + eps), 0.23)) < 1e-9);
 

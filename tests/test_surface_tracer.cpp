@@ -440,6 +440,14 @@ TEST_CASE("surface tree: every leaf box holds its cell's patch, and is no larger
     }
   }
   CHECK(leaves == 40 * 30);
+  // Each inner node's box is exactly the union of its children's.
+  for (const BoundsTree::Node& n : s.tree.nodes) {
+    if (n.children[0] < 0) continue;
+    const BoundsTree::Node& a = s.tree.nodes[static_cast<std::size_t>(n.children[0])];
+    const BoundsTree::Node& b = s.tree.nodes[static_cast<std::size_t>(n.children[1])];
+    CHECK(n.lower == glm::min(a.lower, b.lower));
+    CHECK(n.upper == glm::max(a.upper, b.upper));
+  }
 }
 
 TEST_CASE("surface tracer: where Newton's method fails, the triangle's hit is kept, unrefined") {
