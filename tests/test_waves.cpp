@@ -491,3 +491,18 @@ TEST_CASE(
   CAPTURE(expected);
   CHECK(std::fabs(e.mean - expected) < 4.0 * e.standard_error);
 }
+
+TEST_CASE("finish_combination: foam is 1 where det J < 0 only, not on the fold itself") {
+  // det J = (1 + ∂D_x/∂x)(1 + ∂D_z/∂z) − (∂D_x/∂z)² (eq. 4.26) at three hand-set points: exactly
+  // 0 (∂D_x/∂x = −1: on the fold, not folded), just below 0 and just above.
+  for (const auto& [ddx_dx, foam] :
+       {std::pair{-1.0, 0.0}, std::pair{-1.0 - 0x1p-40, 1.0}, std::pair{-1.0 + 0x1p-40, 0.0}}) {
+    CAPTURE(ddx_dx);
+    PointFields p;
+    p.raw[static_cast<std::size_t>(Field::ddx_dx)] = ddx_dx;
+    p.raw[static_cast<std::size_t>(Field::ddz_dz)] = 0.5;
+    finish_combination(p);
+    CHECK(p.jacobian == 1.5 * (1.0 + ddx_dx));
+    CHECK(p.foam == foam);
+  }
+}
