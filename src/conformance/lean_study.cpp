@@ -180,7 +180,7 @@ std::vector<LeanStudyRow> lean_study(const Scene& scene, const LeanStudySettings
   st.base = 0.5 * (unresolved.upwind + unresolved.crosswind);
   double period = 0.0;
   for (const double size : scene.waves.sizes) period = std::fmax(period, size);
-  // (Lutz eq. 13; with Σ w² = 1 the term cancels.)
+  // μ_B, μ_M of Lutz eq. 13 (with Σ w² = 1 their term cancels).
   st.mean = exemplar_mean_moments(st.exemplar, st.fields, st.evolved, st.mode, period);
   const std::vector<double> sizes = s.footprint_sizes.empty()
                                         ? std::vector<double>{period / 16, period / 4, period}
