@@ -497,7 +497,8 @@ TEST_CASE("finish_combination: foam is 1 where det J < 0 only, not on the fold i
   // 0 (∂D_x/∂x = −1: on the fold, not folded), just below 0 and just above.
   for (const auto& [ddx_dx, foam] :
        {std::pair{-1.0, 0.0}, std::pair{-1.0 - 0x1p-40, 1.0}, std::pair{-1.0 + 0x1p-40, 0.0}}) {
-    CAPTURE(ddx_dx);
+    const double slope = ddx_dx;  // a structured binding cannot be captured before C++20's P1091
+    CAPTURE(slope);
     PointFields p;
     p.raw[static_cast<std::size_t>(Field::ddx_dx)] = ddx_dx;
     p.raw[static_cast<std::size_t>(Field::ddz_dz)] = 0.5;
