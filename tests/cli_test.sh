@@ -225,6 +225,9 @@ expect 2 'cannot open' fields "$tmp/missing.json" --at 0,0
 expect 2 '--at.*x,z' fields "$tmp/scene.json" --at 1,2,3
 expect 2 'give -o OUT.exr or --at' fields "$tmp/scene.json"
 expect 2 '--threads' fields "$tmp/scene.json" --at 0,0 --threads -3
+# The range's ends exactly: 1024 accepted (a point query starts no thread), 1025 refused.
+expect 0 '' fields "$tmp/scene.json" --at 0,0 --threads 1024
+expect 2 "^oceanref: --threads: must be in \\[0, 1024\\] \\(0: all cores\\), got '1025' \\(see oceanref --help\\)$" fields "$tmp/scene.json" --at 0,0 --threads 1025
 # A failed write leaves neither the file nor a temporary next to it (a read-only folder stops
 # only non-root users; /proc stops root too).
 mkdir -p "$tmp/ro" && chmod a-w "$tmp/ro"
@@ -766,6 +769,10 @@ expect 2 "^oceanref: --low-resolution: must be a power of two in \[4, --resoluti
   bench synthesis --resolution 8 --low-resolution 16
 expect 2 "^oceanref: --low-resolution: must be a power of two in \[4, --resolution\], got 12$" \
   bench synthesis --resolution 16 --low-resolution 12
+expect 2 "^oceanref: --low-resolution: must be a power of two in \[4, --resolution\], got 2$" \
+  bench synthesis --resolution 8 --low-resolution 2
+# The range's lower end exactly: N_h = N_l = 4 accepted (one timed frame: a row per FFT).
+expect 0 '^kissfft,' bench synthesis --resolution 4 --low-resolution 4 --frames 1
 expect 2 "^oceanref: --spp: must be a square number in \[1, 256\], got 3$" bench render --spp 3
 expect 2 "^oceanref: --output requires --size" sky --sun-zenith-deg 30 -o "$tmp/x.exr"
 expect 2 "^oceanref: --size requires --output" sky --sun-zenith-deg 30 --size 8

@@ -566,12 +566,16 @@ sky_y = [float(r[next(k for k in r if k.startswith("L_sky_Y"))]) for r in orders
 check(abs(sky_y[4] - sky_y[5]) < 1e-3 * sky_y[5] < abs(sky_y[0] - sky_y[5]),
       f"bench lighting: L_sky_Y by order {sky_y} does not converge")
 
-synthesis, notes = bench_tables("synthesis", "--cascades", 2, "--resolution", 32, "--frames", 1,
+synthesis, notes = bench_tables("synthesis", "--cascades", 2, "--resolution", 32, "--frames", 16,
                          "--threads", 1)
 check([r["fft"] for r in synthesis[0]] == ["kissfft", "fftw"], "bench synthesis: the FFT rows")
-for r in synthesis[0]:  # one frame: its four stages take time, and no more than the frame
+for r in synthesis[0]:
+    # Each frame's four stages are timed inside it, so the stages' means over the 16 frames take
+    # time and sum to no more than the mean frame (a stage summed instead of averaged would be
+    # 16 times its share: the smallest, unpacking, is ~3% of a frame, the time outside the
+    # stages ~1%).
     stages = [float(r[k]) for k in ("evolve_ms", "pack_ms", "transform_ms", "unpack_ms")]
-    check(min(stages) > 0 and sum(stages) <= float(r["frame_ms_median"]),
+    check(min(stages) > 0 and sum(stages) <= float(r["frame_ms_mean"]),
           f"bench synthesis {r['fft']}: stage times {r}")
 difference = float(notes.split("largest field difference kissfft vs fftw: ")[1].split()[0])
 check(difference < 1e-14, f"bench synthesis: KissFFT and FFTW fields differ by {difference}")

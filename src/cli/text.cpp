@@ -166,10 +166,6 @@ std::array<double, 3> parse_unit_vector(const std::string& flag, std::string_vie
 }
 
 int resolve_threads(int requested) {
-  if (requested < 0 || requested > 1024) {
-    throw UsageError("--threads",
-                     "must be in [0, 1024] (0: all cores), got " + std::to_string(requested));
-  }
   return requested > 0 ? requested
                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }

@@ -28,7 +28,7 @@ class UsageError : public std::invalid_argument {
 // and the exit status is 1.
 struct CheckFailed {};
 
-// --threads: 0 means all cores; throws UsageError outside [0, 1024].
+// --threads (already checked in [0, 1024] by its option): 0 means all cores.
 int resolve_threads(int requested);
 // "<who>: <message>" on stderr, only when it is a terminal (pipes and CI logs stay clean).
 void progress(std::string_view who, const std::string& message);
