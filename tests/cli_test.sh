@@ -225,7 +225,7 @@ expect 2 'cannot open' fields "$tmp/missing.json" --at 0,0
 expect 2 '--at.*x,z' fields "$tmp/scene.json" --at 1,2,3
 expect 2 'give -o OUT.exr or --at' fields "$tmp/scene.json"
 expect 2 '--threads' fields "$tmp/scene.json" --at 0,0 --threads -3
-# The range's ends exactly: 1024 accepted (a point query starts no thread), 1025 refused.
+# The range's ends exactly: 1024 accepted (no more threads start than rows to share), 1025 refused.
 expect 0 '' fields "$tmp/scene.json" --at 0,0 --threads 1024
 expect 2 "^oceanref: --threads: must be in \\[0, 1024\\] \\(0: all cores\\), got '1025' \\(see oceanref --help\\)$" fields "$tmp/scene.json" --at 0,0 --threads 1025
 # A failed write leaves neither the file nor a temporary next to it (a read-only folder stops
