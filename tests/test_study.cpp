@@ -283,6 +283,14 @@ TEST_CASE("study: FFT grids equal direct summation at the nodes; interpolation e
   // agree to rounding (~1e-15); an index, sign or normalisation error would show as O(0.1).
   CHECK(r.max_abs_difference < 1e-12);
   CHECK(r.fft_seconds_per_frame > 0.0);
+  // Per node: the frame's time shared among every cascade's N_h² nodes (two cascades here).
+  {
+    Scene two = scene;
+    two.waves.sizes = {60.0, 21.0};
+    const FftVsDirect t = study_fft_vs_direct(two, 2);
+    const double nodes = static_cast<double>(two.waves.resolution) * two.waves.resolution;
+    CHECK(t.fft_seconds_per_node == t.fft_seconds_per_frame / (nodes * 2.0));
+  }
 
   const std::vector<InterpolationError> e = interpolation_errors(scene, 2);
   REQUIRE(e.size() == 3);
