@@ -121,6 +121,13 @@ expect 2 "^oceanref: --pm-wind: expected u10 or u19.5; got 'u20'$" \
 expect 2 "^oceanref: --tma-attenuation: expected exact or thompson-vincent; got 'kitaigorodskii'$" \
   spectrum --model tma --depth 20 --tma-attenuation kitaigorodskii --omega 1
 expect 2 '--swell.*\[0, 1\]' spectrum --model jonswap --swell 2 --omega 1
+# The number flags that take no infinity refuse it by name (--depth and --k-max take it).
+for flag in --wind-speed --fetch --gravity --swell --spread-blend --phillips-suppression \
+  --capillary-wavenumber; do
+  expect 2 "^oceanref: $flag: expected a finite number in \\[" spectrum --model jonswap "$flag" inf --omega 1
+done
+expect 2 "^oceanref: --wavevector: expected a finite number in rad/m, got 'inf'" \
+  spectrum --model jonswap --wavevector 1:inf
 expect 2 '--gamma.*\[1, 20\]' spectrum --model jonswap --gamma 0.5 --omega 1
 expect 2 "^oceanref: --swell-model: expected lutz or alimardanov; got 'horvath'$" \
   spectrum --model jonswap --swell 0.5 --swell-model horvath --omega 1
@@ -510,6 +517,15 @@ FAKE_FFMPEG_FAIL=1 PATH="$tmp/fakebin:$PATH" expect 2 'ffmpeg failed to assemble
   render "$tmp/seq.json" -o "$tmp/fv_##.exr" --png "$tmp/f%v_##.png" --frames 1:2 --video "$tmp/fv.mp4"
 [ ! -e "$tmp/fv.mp4" ] || fail "render --video: a video although ffmpeg failed"
 [ ! -e "$tmp/.oceanref-fv.partial.mp4" ] || fail "render --video: ffmpeg's partial output is left after it failed"
+# The stand-in found in a folder of PATH that is neither the first nor the last (PATH holds only
+# these three folders while oceanref runs, so no other ffmpeg answers).
+checks=$((checks + 1))
+if PATH="$tmp/none:$tmp/fakebin:$tmp/none2" "$bin" render "$tmp/seq.json" -o "$tmp/mid_##.exr" \
+  --png "$tmp/mid_##.png" --frames 1:2 --video "$tmp/mid.mp4" --threads 2 >/dev/null 2>"$tmp/err"; then
+  [ "$(cat "$tmp/mid.mp4" 2>/dev/null)" = video ] || fail "render --video: no video with ffmpeg in PATH's middle folder"
+else
+  fail "render --video with ffmpeg in PATH's middle folder: $(cat "$tmp/err")"
+fi
 unset FAKE_FFMPEG_ARGS
 
 # Adaptive sampling (render.pixel_tolerance): the samples behind the pixels and the capped ones
@@ -1058,7 +1074,7 @@ python3 -c "
 import json, sys
 s = json.load(open(sys.argv[1])); s['waves']['synthesis'] = 'tiling_and_blending'
 json.dump(s, open(sys.argv[2], 'w'))" "$tmp/acf_periodic.json" "$tmp/acf_tiled.json"
-expect 0 '^scene,tau_m,tau_periods,acf,acf_disp_x,acf_height,acf_disp_z$' acf \
+expect 0 '^scene,tau_m,tau_periods,acf,acf_disp_x,acf_height,acf_disp_z,variance_disp_x,variance_height,variance_disp_z$' acf \
   "$tmp/acf_periodic.json" "$tmp/acf_tiled.json" --lines 200 --length 2 --samples-per-period 4
 checks=$((checks + 1))
 [ "$(wc -l <"$tmp/out")" -eq 19 ] || fail "acf: expected a header and 2 x 9 lags"

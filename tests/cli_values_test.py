@@ -1547,9 +1547,9 @@ def render_fields_acf_flags():
             check(float(other[3]["acf"]) != float(rows[3]["acf"]), f"acf {flag} {value} changes nothing")
 
         # The components: without choppiness there is no horizontal displacement (its columns
-        # empty) and the vector ACF is the height's; with it, the vector ACF is the
-        # variance-weighted mean of the three (between the least and the greatest); each is 1 at
-        # lag 0.
+        # empty, its variances 0) and the vector ACF is the height's; with it, the vector ACF is
+        # the mean of the three weighted by the printed variances r~_c(0) (to rounding), between
+        # the least and the greatest; each is 1 at lag 0.
         for chop in (0, -1.5):
             scene = json.loads(json.dumps(single))
             scene["waves"]["choppiness"] = chop
@@ -1562,14 +1562,21 @@ def render_fields_acf_flags():
             parts = ("acf_disp_x", "acf_height", "acf_disp_z")
             check(len(rows) == 9 and all(float(rows[0][c]) == 1.0 for c in parts if rows[0][c]),
                   f"acf choppiness {chop}: the components at lag 0 {rows[:1]}")
+            variances = [float(rows[0][k]) for k in
+                         ("variance_disp_x", "variance_height", "variance_disp_z")]
+            check(all(r[k] == rows[0][k] for r in rows for k in r if k.startswith("variance_")),
+                  f"acf choppiness {chop}: the variances differ between rows")
             for r in rows:
                 if chop == 0:
-                    check(r["acf_disp_x"] == r["acf_disp_z"] == "" and r["acf"] == r["acf_height"],
+                    check(r["acf_disp_x"] == r["acf_disp_z"] == "" and r["acf"] == r["acf_height"]
+                          and variances[0] == variances[2] == 0 < variances[1],
                           f"acf without choppiness: {r}")
                 else:
                     c = [float(r[k]) for k in parts]
+                    weighted = sum(a * v for a, v in zip(c, variances)) / sum(variances)
                     check(min(c) - 1e-12 <= float(r["acf"]) <= max(c) + 1e-12 and
-                          (len(set(c)) == 3 or r["tau_m"] == "0"), f"acf choppiness {chop}: {r}")
+                          (len(set(c)) == 3 or r["tau_m"] == "0") and min(variances) > 0 and
+                          abs(float(r["acf"]) - weighted) <= 1e-14, f"acf choppiness {chop}: {r}")
         acf_plot(single, tmp)
 
 
@@ -1671,8 +1678,8 @@ def acf_plot(single, tmp):
     # --map: the scenes' heights side by side (16 pixels over 4 x 4 periods of 64 m each, 8 grey
     # pixels apart), grey = 1/2 + eta/(6 sigma), z upwards. The heights of the first scene at its
     # first period's pixel centres come from `fields --at` (direct sums, as the map's scene
-    # interpolates); sigma, the map's own estimate, is fitted. The periodic ocean repeats every 4
-    # pixels.
+    # interpolates), sigma^2 is the CSV's variance_height (the map's own estimate): each byte is
+    # round(255 (1/2 + eta/(6 sigma))) exactly. The periodic ocean repeats every 4 pixels.
     image = oiio.ImageInput.open(map_path)
     spec = image.spec()
     rgb = np.rint(image.read_image(0, 0, 0, spec.nchannels, "float") * 255)
@@ -1697,11 +1704,14 @@ def acf_plot(single, tmp):
                                   if r["field"] == "height")["direct"]))
             g.append(left[15 - row, m] / 255 - 0.5)
     eta, g = np.array(eta), np.array(g)
-    k = (g @ eta) / (eta @ eta)  # 1/(6 sigma)
-    check(k > 0 and np.all(np.abs(g) < 0.49) and np.ptp(g) > 0.2,
+    check(np.all(np.abs(g) < 0.49) and np.ptp(g) > 0.2,
           f"acf --map: greys {g * 255 + 127.5} of heights {eta}")
-    check(np.all(np.abs(255 * (g - k * eta)) <= 0.55),
-          f"acf --map: grey is not 1/2 + eta/(6 sigma) to rounding: {255 * (g - k * eta)}")
+    sigma = math.sqrt(float(next(r for r in rows if r["scene"] == "calm_one_with_a_name")
+                            ["variance_height"]))
+    expected = [math.floor(255 * min(max(0.5 + e / (6 * sigma), 0.0), 1.0) + 0.5) for e in eta]
+    check(list(np.rint(g * 255 + 127.5)) == expected,
+          f"acf --map: greys {list(g * 255 + 127.5)}, expected round(255 (1/2 + eta/(6 sigma))) "
+          f"{expected}")
 
 
 def unconverged_samples_counted():

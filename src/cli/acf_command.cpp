@@ -63,9 +63,10 @@ std::string xml_escaped(const std::string& text) {
 }
 
 // scene,tau_m,tau_periods,acf,acf_disp_x,acf_height,acf_disp_z (a component without variance:
-// empty).
+// empty),variance_disp_x,variance_height,variance_disp_z (r̃_c(0) [m²], the same on every row).
 void write_csv(std::ostream& out, const std::vector<SceneAcf>& results) {
-  out << "scene,tau_m,tau_periods,acf,acf_disp_x,acf_height,acf_disp_z\n";
+  out << "scene,tau_m,tau_periods,acf,acf_disp_x,acf_height,acf_disp_z,variance_disp_x,"
+         "variance_height,variance_disp_z\n";
   for (const SceneAcf& r : results) {
     const Autocorrelation& a = r.acf;
     for (std::size_t j = 0; j < a.lags.size(); ++j) {
@@ -75,6 +76,7 @@ void write_csv(std::ostream& out, const std::vector<SceneAcf>& results) {
         out << ',';
         if (!c.empty()) out << format_number(c[j]);
       }
+      for (const double v : a.variance) out << ',' << format_number(v);
       out << '\n';
     }
   }
@@ -168,8 +170,9 @@ std::function<void(std::ostream&)> add_acf_command(CLI::App& app) {
       "The autocorrelation function of each scene's displacement q = p(x0) - (x0, 0, z0) (Lutz "
       "et al. 2024 eq. 22), as the renderer reads the surface (scene synthesis, interpolation "
       "and normals), over random start points and lags along one direction: CSV "
-      "scene,tau_m,tau_periods,acf,acf_disp_x,acf_height,acf_disp_z to stdout or -o (acf: the "
-      "vector's; a component without variance is empty), an SVG plot, a PNG map of the heights.");
+      "scene,tau_m,tau_periods,acf,acf_disp_x,acf_height,acf_disp_z,variance_disp_x,"
+      "variance_height,variance_disp_z to stdout or -o (acf: the vector's; a component without "
+      "variance is empty; variance_*: r~(0), m^2), an SVG plot, a PNG map of the heights.");
   cmd->add_option("SCENES", flags->scenes, "scene files (JSON), one line each in the plot")
       ->required();
   cmd->add_option("-o,--output", flags->output, "OUT.csv (default: stdout)");
