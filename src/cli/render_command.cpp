@@ -30,11 +30,12 @@
 namespace oceanref::cli {
 
 namespace {
-// --spp: a square number in [1, kMaxSamplesPerAxis²]; its square root (0 when not given).
+// --spp (already checked in [1, kMaxSamplesPerAxis²] by its option): a square number; its square
+// root (0 when not given).
 int samples_per_axis(int spp) {
   if (spp == 0) return 0;
   const int axis = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
-  if (spp < 1 || spp > kMaxSamplesPerAxis * kMaxSamplesPerAxis || axis * axis != spp) {
+  if (axis * axis != spp) {
     throw UsageError("--spp", "must be a square number in [1, " +
                                   std::to_string(kMaxSamplesPerAxis * kMaxSamplesPerAxis) +
                                   "], got " + std::to_string(spp));
