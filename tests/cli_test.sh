@@ -107,6 +107,14 @@ expect 2 '--model.*phillips, pierson-moskowitz' spectrum --model foo --omega 1
 # Beyond 1e6 rad/m the moments' integrands overflow (and no spectrum is defined there).
 expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 1e308
 expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 0.01
+# The range's ends exactly: k_p itself (as the refusal prints it, 17 digits) refused, the next
+# double up and 1e6 accepted, the next double above 1e6 refused.
+k_p=$(sed -n 's/.*peak wavenumber k_p = \([0-9.e+-]*\) rad\/m.*/\1/p' "$tmp/err")
+expect 2 "^oceanref: --k-max: must be in .*, got $k_p$" spectrum --model jonswap --moments --k-max "$k_p"
+expect 0 '^m0,' spectrum --model jonswap --moments \
+  --k-max "$(python3 -c "import math, sys; print(repr(math.nextafter(float(sys.argv[1]), 1)))" "$k_p")"
+expect 0 '^m0,' spectrum --model jonswap --moments --k-max 1e6
+expect 2 '--k-max: must be in \(k_p, 1e6\]' spectrum --model jonswap --moments --k-max 1000000.0000000001
 # k_max = inf: the slope moments of a k⁻³ tail diverge (refused, naming the integral); Phillips'
 # small-wave cutoff makes them finite.
 expect 2 '^oceanref: --k-max: mss_x did not converge .*k⁻³ tail.* \(k_max = inf\)$' spectrum \
