@@ -106,7 +106,11 @@ TEST_CASE("a streamed render's progress rises through its bands to 1") {
   std::vector<double> shares;
   options.progress = [&](double share) { shares.push_back(share); };
   (void)render_scene_to_files(scene, options, dir.file("p.exr"), "");
-  REQUIRE(shares.size() >= 3);
+  // Fewer than 50 rows in a band: every row reports (at most 50 reports per band otherwise).
+  REQUIRE(shares.size() == 19);
+  for (std::size_t k = 0; k < shares.size(); ++k) {
+    CHECK(shares[k] == doctest::Approx(static_cast<double>(k + 1) / 19.0).epsilon(1e-15));
+  }
   CHECK(shares.front() > 0.0);
   CHECK(std::is_sorted(shares.begin(), shares.end()));
   CHECK(shares.back() == 1.0);
@@ -114,6 +118,18 @@ TEST_CASE("a streamed render's progress rises through its bands to 1") {
   for (const double end : {7.0 / 19.0, 14.0 / 19.0}) {
     CAPTURE(end);
     CHECK(std::count(shares.begin(), shares.end(), end) >= 1);
+  }
+  // A band of 150 rows reports every 150/50 = 3 rows: 50 times.
+  Scene tall = scene;
+  tall.image.width = 4;
+  tall.image.height = 150;
+  tall.image.samples_per_axis = 1;
+  options.band_rows = 150;
+  shares.clear();
+  (void)render_scene_to_files(tall, options, dir.file("tall.exr"), "");
+  REQUIRE(shares.size() == 50);
+  for (std::size_t k = 0; k < shares.size(); ++k) {
+    CHECK(shares[k] == doctest::Approx(static_cast<double>(3 * (k + 1)) / 150.0).epsilon(1e-15));
   }
 }
 
