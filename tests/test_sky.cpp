@@ -402,3 +402,28 @@ TEST_CASE("sun spectrum: the table's 380-750 nm and nothing outside it") {
     CHECK(l < extraterrestrial);
   }
 }
+
+TEST_CASE("sun_radiance_xyz: the trapezoid rule over the observer's 5 nm table, ends halved") {
+  // The same sum written out: 683 lm/W · Σ w_i L_sun(λ_i) (x̄, ȳ, z̄)(λ_i), w = 2.5 nm at the
+  // table's two ends and 5 nm inside. The 380 nm end weighs ~1e-5 of the total, so the
+  // expectation is exact to rounding; the 780 nm end lies beyond the solar table's 750 nm, where
+  // L_sun = 0, and cannot show.
+  for (const double zenith_deg : {0.0, 60.0, 85.0}) {
+    CAPTURE(zenith_deg);
+    const Sky sky = make_sky(2.5, zenith_deg * kDeg, 0.0);
+    Vec3 expected{0.0, 0.0, 0.0};
+    for (std::size_t i = 0; i < kCie1931Observer.size(); ++i) {
+      const ColorMatchingSample& c = kCie1931Observer[i];
+      const double w = i == 0 || i == kCie1931Observer.size() - 1 ? 2.5 : 5.0;
+      const double l = sun_spectral_radiance(c.wavelength, sky.sun_zenith, sky.turbidity,
+                                             TransmittanceForm::physical);
+      expected[0] += w * l * c.x;
+      expected[1] += w * l * c.y;
+      expected[2] += w * l * c.z;
+    }
+    const Vec3 got = sun_radiance_xyz(sky);
+    for (std::size_t j = 0; j < 3; ++j) {
+      CHECK(got[j] == doctest::Approx(683.0 * expected[j]).epsilon(1e-14));
+    }
+  }
+}

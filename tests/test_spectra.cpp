@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/quadrature.h"
 #include "spectrum/frequency_spectra.h"
@@ -512,4 +513,17 @@ TEST_CASE("Unified: the long-wave shape L_PM and the peak enhancement J_p at kno
   }
   CHECK(unified_peak_enhancement(9.0 * kp, kp, gamma, sigma) ==
         doctest::Approx(1.0).epsilon(1e-15));
+}
+
+TEST_CASE("unified and phillips are 0 outside 0 < k < inf, by their own guards") {
+  SpectrumSettings in;
+  in.model = SpectrumModel::unified;
+  const Spectrum s = make_spectrum(in);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double k : {-1.0, -0.0, 0.0, inf, -inf, std::numeric_limits<double>::quiet_NaN()}) {
+    CAPTURE(k);
+    CHECK(unified(k, 1.0, s.unified) == 0.0);
+    CHECK(phillips(k, 1.0, 10.0, 0.01) == 0.0);
+  }
+  CHECK(unified(0.5, 1.0, s.unified) > 0.0);  // and not outside only
 }
