@@ -10,6 +10,7 @@
 #include <numbers>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "conformance/render_output.h"
@@ -506,6 +507,26 @@ TEST_CASE("gerstner: det J >= 1 - |u| sum k A, tight for aligned crests") {
   MESSAGE("drawn set with b = 0.95: lowest det J on the lattices = " << lowest);
   CHECK(lowest >= 0.05 - 1e-12);
   CHECK(lowest < 1.0);
+
+  // The lattice's statistics against det J of gerstner_point at each of its points (at a time
+  // and rest points that differ from each other).
+  const double t = 3.0, x_min = -31.0, z_min = 7.0, extent = 40.0;
+  const int points = 24;
+  const GerstnerLoops loops = gerstner_loops(g, t, x_min, z_min, extent, points);
+  double min_det = std::numeric_limits<double>::infinity(), min_x = 0.0, min_z = 0.0;
+  int folded = 0;
+  for (int n = 0; n < points; ++n) {
+    for (int m = 0; m < points; ++m) {
+      const double x = x_min + m * (extent / points), z = z_min + n * (extent / points);
+      const double det = gerstner_point(g, x, z, t).jacobian;
+      folded += det < 0.0 ? 1 : 0;
+      if (det < min_det) std::tie(min_det, min_x, min_z) = std::tuple{det, x, z};
+    }
+  }
+  CHECK(loops.folded_fraction == doctest::Approx(folded / double(points * points)).epsilon(1e-15));
+  CHECK(loops.min_jacobian == doctest::Approx(min_det).epsilon(1e-13));
+  CHECK(loops.min_x == min_x);
+  CHECK(loops.min_z == min_z);
 }
 
 TEST_CASE("gerstner: the displaced profile of one wave is a trochoid") {
