@@ -56,13 +56,13 @@ struct LeanStudyRow {
   double glint_error_mean = 0.0;  // |P − P_truth|/P_truth at the glint's half vector
 };
 
-// Rows per method and footprint size. Throws std::invalid_argument for bad settings.
 // μ_B, μ_M of Lutz eq. 13: the LEAN moments (lean_moments) of the rendered surface's normal
 // (combine_surface_at) of the periodic `exemplar`, averaged over one period [m] (its largest
 // cascade) by the midpoint rule on a 128 × 128 grid of cell centres.
 LeanMoments exemplar_mean_moments(const Ocean& exemplar, const std::vector<CascadeFields>& fields,
                                   const std::vector<EvolvedCascade>& evolved, Interpolation mode,
                                   double period);
+// Rows per method and footprint size. Throws std::invalid_argument for bad settings.
 std::vector<LeanStudyRow> lean_study(const Scene& scene, const LeanStudySettings& settings);
 // CSV: method,footprint_m,lobe_error_mean,lobe_error_max,glint_error_mean.
 void bench_lean(std::ostream& out, const std::vector<LeanStudyRow>& rows);
