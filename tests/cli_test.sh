@@ -477,6 +477,16 @@ PY
 expect 2 '--output: with --frames, a pattern with a run of' render "$tmp/seq.json" -o "$tmp/seq.exr" --frames 0:1
 expect 2 '--frames: expected A:B' render "$tmp/seq.json" -o "$tmp/s_#.exr" --frames 3:1
 expect 2 '--frames: expected A:B' render "$tmp/seq.json" -o "$tmp/s_#.exr" --frames -1:2
+# --frames at its ends, read before the scene (so a missing scene is the next error: accepted):
+# K and B = 1000000, seven digits and A = B pass; 1000001, eight digits and malformed ones do not.
+for frames in 1000000 0:1000000 0000001 5:5; do
+  expect 2 "^oceanref: $tmp/missing.json: cannot open the scene file$" \
+    render "$tmp/missing.json" -o "$tmp/s_#.exr" --frames "$frames"
+done
+for frames in 1000001 0:1000001 00000001 :3 3: 1:2:3 1a 1e3; do
+  expect 2 "^oceanref: --frames: expected A:B \(or K\) with integers 0 <= A <= B <= 1000000, got '$frames'$" \
+    render "$tmp/missing.json" -o "$tmp/s_#.exr" --frames "$frames"
+done
 expect 2 '--fps: only with --frames' render "$tmp/seq.json" -o "$tmp/s.exr" --fps 24
 expect 2 '--fps' render "$tmp/seq.json" -o "$tmp/s_#.exr" --frames 0:1 --fps 0
 expect 2 '--video: assembles the previews' render "$tmp/seq.json" -o "$tmp/s_#.exr" --frames 0:1 --video "$tmp/v.mp4"
@@ -525,6 +535,23 @@ FAKE_FFMPEG_FAIL=1 PATH="$tmp/fakebin:$PATH" expect 2 'ffmpeg failed to assemble
   render "$tmp/seq.json" -o "$tmp/fv_##.exr" --png "$tmp/f%v_##.png" --frames 1:2 --video "$tmp/fv.mp4"
 [ ! -e "$tmp/fv.mp4" ] || fail "render --video: a video although ffmpeg failed"
 [ ! -e "$tmp/.oceanref-fv.partial.mp4" ] || fail "render --video: ffmpeg's partial output is left after it failed"
+# No ffmpeg to run: PATH unset, or its only ffmpeg not executable.
+cp "$tmp/fakebin/ffmpeg" "$tmp/noexec_ffmpeg" && mkdir -p "$tmp/noexec" && mv "$tmp/noexec_ffmpeg" "$tmp/noexec/ffmpeg"
+chmod -x "$tmp/noexec/ffmpeg"
+for path_setting in unset "$tmp/noexec"; do
+  checks=$((checks + 1))
+  if [ "$path_setting" = unset ]; then
+    env -u PATH "$bin_path" render "$tmp/seq.json" -o "$tmp/np_#.exr" --png "$tmp/np_#.png" \
+      --frames 0:1 --video "$tmp/np.mp4" >/dev/null 2>"$tmp/err"
+  else
+    PATH="$path_setting" "$bin_path" render "$tmp/seq.json" -o "$tmp/np_#.exr" --png "$tmp/np_#.png" \
+      --frames 0:1 --video "$tmp/np.mp4" >/dev/null 2>"$tmp/err"
+  fi
+  code=$?
+  { [ "$code" -eq 2 ] && grep -q -- '--video: needs ffmpeg on PATH' "$tmp/err"; } ||
+    fail "render --video with PATH $path_setting: exit $code, $(cat "$tmp/err")"
+  [ ! -e "$tmp/np_0.exr" ] || fail "render --video with PATH $path_setting rendered before refusing"
+done
 # The stand-in found in a folder of PATH that is neither the first nor the last (PATH holds only
 # these three folders while oceanref runs, so no other ffmpeg answers).
 checks=$((checks + 1))
@@ -1064,6 +1091,16 @@ expect 2 '^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got
 for tile in 1 a/3 -1/3 1/-3 ' 1/3' 1/3x 1234567890/3 1/0 1/65537 1/2/3 /3 1/; do
   expect 2 "^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got '$tile'$" \
     render "$scene" --tile "$tile" -o "$tmp/x.piece"
+done
+# I/N at its ends, read before the scene (a missing scene is the next error: accepted): nine digits,
+# N = 65536 and I = N - 1 pass; ten digits do not.
+for tile in 000000001/3 1/000000003 0/65536 65535/65536; do
+  expect 2 "^oceanref: $tmp/missing.json: cannot open the scene file$" \
+    render "$tmp/missing.json" --tile "$tile" -o "$tmp/x.piece"
+done
+for tile in 0000000001/3 1/0000000003; do
+  expect 2 "^oceanref: --tile: expected I/N with integers 0 <= I < N <= 65536, got '$tile'$" \
+    render "$tmp/missing.json" --tile "$tile" -o "$tmp/x.piece"
 done
 expect 2 '^oceanref: --tile: N must be <= the image.s 54 rows, got 55$' render "$scene" --tile 0/55 -o "$tmp/x.piece"
 expect 2 '^oceanref: --png: not with --tile' render "$scene" --tile 0/2 --png "$tmp/x.png" -o "$tmp/x.piece"

@@ -107,6 +107,13 @@ TEST_CASE("preconditions of the wave stages fire on wrong calls") {
                   PreconditionError);
   CHECK_THROWS_AS(combine_direct(ocean, std::vector<EvolvedCascade>(1), 1.0, 2.0),
                   PreconditionError);
+  // One choppiness per cascade size (a missing one would be read past the end).
+  WaveSettings unmatched = waves;
+  unmatched.choppiness = {-0.5};
+  CHECK_THROWS_AS(realize_ocean(unmatched, 1), PreconditionError);
+  unmatched.sizes.clear();
+  unmatched.choppiness.clear();
+  CHECK_THROWS_AS(realize_ocean(unmatched, 1), PreconditionError);
   // A band starts at k ≥ 0.
   CHECK_THROWS_AS(band_slope_variance(spectrum, -1.0, 1.0), PreconditionError);
 }

@@ -287,6 +287,7 @@ TEST_CASE("study: FFT grids equal direct summation at the nodes; interpolation e
   {
     Scene two = scene;
     two.waves.sizes = {60.0, 21.0};
+    two.waves.choppiness = {scene.waves.choppiness[0], scene.waves.choppiness[0]};
     const FftVsDirect t = study_fft_vs_direct(two, 2);
     const double nodes = static_cast<double>(two.waves.resolution) * two.waves.resolution;
     CHECK(t.fft_seconds_per_node == t.fft_seconds_per_frame / (nodes * 2.0));

@@ -24,26 +24,44 @@
 namespace oceanref {
 
 namespace {
-// FFTW double with the same structure as inverse_fft_2d: 1-D transforms of the rows, then of
-// the columns, split among threads. One FFTW_MEASURE plan per size, made before any thread runs
-// (the planner is not thread-safe; fftw_execute_dft is).
-fftw_plan row_plan(int n) {
-  static std::mutex mutex;
-  static std::map<int, fftw_plan> plans;
-  const std::lock_guard lock(mutex);
-  auto it = plans.find(n);
-  if (it == plans.end()) {
-    fftw_complex* a = fftw_alloc_complex(static_cast<std::size_t>(n));
-    fftw_complex* b = fftw_alloc_complex(static_cast<std::size_t>(n));
-    it = plans.emplace(n, fftw_plan_dft_1d(n, a, b, FFTW_BACKWARD, FFTW_MEASURE)).first;
-    fftw_free(a);
-    fftw_free(b);
+// FFTW's 1-D plans of one benchmark run: one FFTW_MEASURE plan per size, made on the calling
+// thread before a transform's threads run, destroyed with the set. FFTW's planner is global and
+// not thread-safe (fftw_execute_dft is), so making and destroying plans is serialised.
+class FftwPlans {
+ public:
+  FftwPlans() = default;
+  FftwPlans(const FftwPlans&) = delete;
+  FftwPlans& operator=(const FftwPlans&) = delete;
+  ~FftwPlans() {
+    const std::lock_guard lock(planner_mutex());
+    for (const auto& [n, plan] : plans_) fftw_destroy_plan(plan);
   }
-  return it->second;
-}
 
-void inverse_fft_2d_fftw(std::vector<Complex>& data, int n, int threads) {
-  const fftw_plan plan = row_plan(n);
+  fftw_plan row_plan(int n) {
+    const std::lock_guard lock(planner_mutex());
+    auto it = plans_.find(n);
+    if (it == plans_.end()) {
+      fftw_complex* a = fftw_alloc_complex(static_cast<std::size_t>(n));
+      fftw_complex* b = fftw_alloc_complex(static_cast<std::size_t>(n));
+      it = plans_.emplace(n, fftw_plan_dft_1d(n, a, b, FFTW_BACKWARD, FFTW_MEASURE)).first;
+      fftw_free(a);
+      fftw_free(b);
+    }
+    return it->second;
+  }
+
+ private:
+  static std::mutex& planner_mutex() {
+    static std::mutex mutex;
+    return mutex;
+  }
+  std::map<int, fftw_plan> plans_;
+};
+
+// FFTW double with the same structure as inverse_fft_2d: 1-D transforms of the rows, then of
+// the columns, split among threads.
+void inverse_fft_2d_fftw(FftwPlans& plans, std::vector<Complex>& data, int n, int threads) {
+  const fftw_plan plan = plans.row_plan(n);
   const auto stride = static_cast<std::size_t>(n);
   parallel_for(n, threads, [&](int row) {
     fftw_complex* line = fftw_alloc_complex(stride);
@@ -96,7 +114,7 @@ struct Run {
   SynthesisTimes stages;
 };
 
-Run time_pipeline(const Ocean& ocean, const Flags& f, InverseFft2d fft) {
+Run time_pipeline(const Ocean& ocean, const Flags& f, const InverseFft2d& fft) {
   Run run;
   // Storage is allocated once for the sequence, as a renderer would; frame −1 warms up (FFTW
   // plans, first touch of the buffers).
@@ -129,14 +147,17 @@ void bench_synthesis_impl(std::ostream& out, const Flags& f) {
   w.low_resolution = f.low_resolution > 0 ? f.low_resolution : f.resolution;
   w.choppiness.assign(w.sizes.size(), -1.0);
   const Ocean ocean = realize_ocean(w, f.threads);
+  FftwPlans plans;
+  const InverseFft2d by_fftw_plans = [&plans](std::vector<Complex>& data, int n, int threads) {
+    inverse_fft_2d_fftw(plans, data, n, threads);
+  };
   const Run kiss = time_pipeline(ocean, f, inverse_fft_2d);
-  const Run fftw = time_pipeline(ocean, f, inverse_fft_2d_fftw);
+  const Run fftw = time_pipeline(ocean, f, by_fftw_plans);
   // The two FFTs must give the same fields (to rounding), or the timing comparison is moot.
   double worst = 0.0;
   const CascadeSpectra& c0 = ocean.cascades[0];
   const CascadeFields by_kiss = synthesize_cascade(c0.low, c0.high, 1.0, f.threads);
-  const CascadeFields by_fftw =
-      synthesize_cascade(c0.low, c0.high, 1.0, f.threads, inverse_fft_2d_fftw);
+  const CascadeFields by_fftw = synthesize_cascade(c0.low, c0.high, 1.0, f.threads, by_fftw_plans);
   for (std::size_t q = 0; q < by_kiss.values.size(); ++q) {
     for (std::size_t i = 0; i < by_kiss.values[q].size(); ++i) {
       worst = std::max(worst, std::fabs(by_kiss.values[q][i] - by_fftw.values[q][i]));

@@ -22,7 +22,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // c = F⁻¹(M₁h + i·M₂h), field₁ = Re c, field₂ = Im c.
 int synthesize_fields(const std::vector<Complex>& h, const PatternSpectrum& s,
                       const std::vector<Field>& fields, CascadeFields& out, int threads,
-                      InverseFft2d fft, SynthesisTimes* times, std::vector<Complex>& c) {
+                      const InverseFft2d& fft, SynthesisTimes* times, std::vector<Complex>& c) {
   const int n = s.pattern.resolution;
   const double dk = wavenumber_spacing(s.pattern.size);
   int transforms = 0;
@@ -65,8 +65,8 @@ int synthesize_fields(const std::vector<Complex>& h, const PatternSpectrum& s,
 }  // namespace
 
 void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time,
-                        int threads, CascadeFields& out, SynthesisWorkspace& work, InverseFft2d fft,
-                        SynthesisTimes* times) {
+                        int threads, CascadeFields& out, SynthesisWorkspace& work,
+                        const InverseFft2d& fft, SynthesisTimes* times) {
   OCEANREF_EXPECTS(
       low.pattern.size == high.pattern.size && low.pattern.resolution <= high.pattern.resolution,
       "the low and high patterns of one cascade: the same size L and N_l <= N_h");
@@ -98,7 +98,7 @@ void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
 }
 
 CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
-                                 double time, int threads, InverseFft2d fft,
+                                 double time, int threads, const InverseFft2d& fft,
                                  SynthesisTimes* times) {
   CascadeFields out;
   SynthesisWorkspace work;

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -96,7 +97,7 @@ struct SynthesisTimes {
 };
 
 // An inverse 2-D DFT in the convention of inverse_fft_2d (benchmarks swap in FFTW).
-using InverseFft2d = void (*)(std::vector<Complex>& data, int resolution, int threads);
+using InverseFft2d = std::function<void(std::vector<Complex>& data, int resolution, int threads)>;
 
 // Buffers reused from frame to frame (a sequence allocates them once).
 struct SynthesisWorkspace {
@@ -108,10 +109,10 @@ struct SynthesisWorkspace {
 // multi-resolution is off).
 void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time,
                         int threads, CascadeFields& out, SynthesisWorkspace& work,
-                        InverseFft2d fft = inverse_fft_2d, SynthesisTimes* times = nullptr);
+                        const InverseFft2d& fft = inverse_fft_2d, SynthesisTimes* times = nullptr);
 // The same with fresh storage.
 CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
-                                 double time, int threads, InverseFft2d fft = inverse_fft_2d,
+                                 double time, int threads, const InverseFft2d& fft = inverse_fft_2d,
                                  SynthesisTimes* times = nullptr);
 
 // Fields combined over cascades at one point (Gamper eq. 4.22–4.26); per cascade the raw fields

@@ -79,6 +79,9 @@ Ocean realize_ocean(const WaveSettings& settings, int threads) {
     ocean.gerstner = draw_gerstner_waves(ocean.spectrum, settings.gerstner, settings.seed);
     return ocean;
   }
+  OCEANREF_EXPECTS(!settings.sizes.empty() && settings.choppiness.size() == settings.sizes.size(),
+                   "one choppiness per cascade: " + std::to_string(settings.choppiness.size()) +
+                       " for " + std::to_string(settings.sizes.size()) + " sizes");
   if (settings.synthesis == Synthesis::tiling_and_blending) ocean.tiling = resolve_tiling(settings);
   if (settings.realization == Realization::mastin) {
     ocean.filter = make_mastin_filter(ocean.spectrum, settings.mastin);
