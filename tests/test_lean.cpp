@@ -166,6 +166,27 @@ TEST_CASE("LEAN study: the exemplar's mean moments (Lutz eq. 13) are the period'
 }
 
 TEST_CASE(
+    "LEAN study: the lobe errors are summed over the box centre ± half width, 24 x 24 cells") {
+  const std::array<double, 2> centre{0.03, -0.02}, half{0.4, 0.1};
+  const std::vector<std::array<double, 2>> grid = lobe_grid(centre, half);
+  REQUIRE(grid.size() == 24 * 24);
+  // Cell k = 24 j + i has its centre at c + w ((2i + 1)/24 - 1): the cells tile [c - w, c + w].
+  double mean_x = 0.0, mean_z = 0.0;
+  for (std::size_t k = 0; k < grid.size(); ++k) {
+    const double i = static_cast<double>(k % 24), j = static_cast<double>(k / 24);
+    CHECK(grid[k][0] == doctest::Approx(centre[0] + half[0] * ((2.0 * i + 1.0) / 24.0 - 1.0)));
+    CHECK(grid[k][1] == doctest::Approx(centre[1] + half[1] * ((2.0 * j + 1.0) / 24.0 - 1.0)));
+    mean_x += grid[k][0] / 576.0;
+    mean_z += grid[k][1] / 576.0;
+  }
+  // Symmetric about the centre, the outer cells half a cell inside the box.
+  CHECK(mean_x == doctest::Approx(centre[0]));
+  CHECK(mean_z == doctest::Approx(centre[1]));
+  CHECK(grid.front()[0] == doctest::Approx(centre[0] - half[0] * 23.0 / 24.0));
+  CHECK(grid.back()[1] == doctest::Approx(centre[1] + half[1] * 23.0 / 24.0));
+}
+
+TEST_CASE(
     "LEAN study: periodic, every LEAN form is the footprint's; with a flow map the "
     "rotation correction matters (Lutz Fig. 7)") {
   LeanStudySettings settings;

@@ -605,9 +605,11 @@ TEST_CASE("a perfect mirror (sigma2 = 0) is rejected, not integrated") {
   const Sky sky = make_sky(2.5, 1.0, 1.0);
   const SurfaceFrame f = wind_frame(unit(0, 1, 0), 0.0);
   const Vec3 view = unit(0.3, 0.5, 0.5);
-  for (const SlopeVariance s :
-       {SlopeVariance{0.0, 0.01}, SlopeVariance{0.01, -1.0}, SlopeVariance{std::nan(""), 0.01}}) {
+  for (const SlopeVariance s : {SlopeVariance{0.0, 0.01}, SlopeVariance{0.01, -1.0},
+                                SlopeVariance{std::nan(""), 0.01}, SlopeVariance{0.01, HUGE_VAL}}) {
     CHECK_THROWS_AS(mean_fresnel_reference(view, f, s, {}, 1e-6), std::invalid_argument);
+    CHECK_THROWS_AS(reflected_sun_bound(sky.sun_direction, kSunAngularRadius, view, f, s),
+                    std::invalid_argument);
     CHECK_THROWS_AS(reflected_sky_reference(view, f, s, sky, {}, 1e-6, {}), std::invalid_argument);
     CHECK_THROWS_AS(
         reflected_sun_reference(sky.sun_direction, kSunAngularRadius, view, f, s, {}, 1e-6, 0.0),

@@ -22,8 +22,6 @@ namespace oceanref {
 namespace {
 constexpr std::array<const char*, 4> kMethods{"normal_mapping", "lean", "lean_corrected",
                                               "lean_exact"};
-constexpr int kLobeGrid = 24;
-
 struct FootprintErrors {
   std::array<double, 4> lobe{}, glint{};
 };
@@ -116,20 +114,16 @@ FootprintErrors footprint_errors(const Study& st, double cx, double cz, double a
   };
   // The grid of h̃: ±4 standard deviations of the truth around its mean.
   const SlopeCovariance spread = lean_covariance(exact.b, exact.m, st.base);
-  const double hx = 4.0 * std::sqrt(spread.xx), hz = 4.0 * std::sqrt(spread.zz);
   FootprintErrors e;
   std::array<double, 4> squares{};
   double truth_squares = 0.0;
-  for (int j = 0; j < kLobeGrid; ++j) {
-    for (int i = 0; i < kLobeGrid; ++i) {
-      const std::array<double, 2> h{exact.b[0] + hx * ((i + 0.5) / kLobeGrid * 2.0 - 1.0),
-                                    exact.b[1] + hz * ((j + 0.5) / kLobeGrid * 2.0 - 1.0)};
-      const double p = truth(h);
-      truth_squares += p * p;
-      for (std::size_t m = 0; m < 4; ++m) {
-        const double d = beckmann_slope_density(h, means[m], covariances[m]) - p;
-        squares[m] += d * d;
-      }
+  for (const std::array<double, 2>& h :
+       lobe_grid(exact.b, {4.0 * std::sqrt(spread.xx), 4.0 * std::sqrt(spread.zz)})) {
+    const double p = truth(h);
+    truth_squares += p * p;
+    for (std::size_t m = 0; m < 4; ++m) {
+      const double d = beckmann_slope_density(h, means[m], covariances[m]) - p;
+      squares[m] += d * d;
     }
   }
   const std::array<double, 2> g = glint_half_slope();
@@ -141,6 +135,20 @@ FootprintErrors footprint_errors(const Study& st, double cx, double cz, double a
   return e;
 }
 }  // namespace
+
+std::vector<std::array<double, 2>> lobe_grid(const std::array<double, 2>& centre,
+                                             const std::array<double, 2>& half_width) {
+  constexpr int kLobeGrid = 24;
+  std::vector<std::array<double, 2>> points;
+  points.reserve(kLobeGrid * kLobeGrid);
+  for (int j = 0; j < kLobeGrid; ++j) {
+    for (int i = 0; i < kLobeGrid; ++i) {
+      points.push_back({centre[0] + half_width[0] * ((i + 0.5) / kLobeGrid * 2.0 - 1.0),
+                        centre[1] + half_width[1] * ((j + 0.5) / kLobeGrid * 2.0 - 1.0)});
+    }
+  }
+  return points;
+}
 
 LeanMoments exemplar_mean_moments(const Ocean& exemplar, const std::vector<CascadeFields>& fields,
                                   const std::vector<EvolvedCascade>& evolved, Interpolation mode,

@@ -25,6 +25,7 @@
 // above it, 3° to the side).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -56,6 +57,10 @@ struct LeanStudyRow {
   double glint_error_mean = 0.0;  // |P − P_truth|/P_truth at the glint's half vector
 };
 
+// The points h̃ at which a footprint's lobe errors are summed: the cell centres of a 24 × 24 grid
+// over the box centre ± half_width, row by row (h̃_x fastest).
+std::vector<std::array<double, 2>> lobe_grid(const std::array<double, 2>& centre,
+                                             const std::array<double, 2>& half_width);
 // μ_B, μ_M of Lutz eq. 13: the LEAN moments (lean_moments) of the rendered surface's normal
 // (combine_surface_at) of the periodic `exemplar`, averaged over one period [m] (its largest
 // cascade) by the midpoint rule on a 128 × 128 grid of cell centres.
