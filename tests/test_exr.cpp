@@ -345,6 +345,34 @@ TEST_CASE("read_exr_parts: clear errors for a missing file, a non-EXR file and d
   CHECK(e3.find("part 0: deep data (deepscanline) is not supported") != std::string::npos);
 }
 
+TEST_CASE("read_exr_parts: an attribute claiming more bytes than the file holds, in any header") {
+  // Headers by hand (magic, version 2 with the multi-part flag, then name\0type\0size value
+  // attributes, an empty name ending each header, an empty header ending the list). OpenEXR reads
+  // the first header even when it is empty, and the ones after it: so does the size check.
+  const auto attribute = [](const std::string& name, const std::string& type, std::int32_t claimed,
+                            const std::string& value) {
+    std::string a = name + '\0' + type + '\0';
+    for (int b = 0; b < 4; ++b) a += static_cast<char>((claimed >> (8 * b)) & 0xff);
+    return a + value;
+  };
+  const std::string magic("\x76\x2f\x31\x01\x02\x10\x00\x00", 8);
+  const std::string claim = attribute("name", "string", 2000000000, "abc");
+  const std::string small = attribute("a", "int", 4, std::string(4, '\0'));
+  const TempDir dir;
+  for (const std::pair<std::string, std::string>& c :
+       {std::pair<std::string, std::string>{"second header", small + '\0' + claim + '\0' + '\0'},
+        std::pair<std::string, std::string>{"after an empty first header",
+                                            '\0' + claim + '\0' + '\0'}}) {
+    CAPTURE(c.first);
+    const std::string path = dir.file("claims.exr");
+    std::ofstream(path, std::ios::binary) << magic + c.second;
+    CHECK(error_of([&] { read_exr_parts(path); }) ==
+          path +
+              ": cannot read the EXR file: header attribute name (string) claims 2000000000 "
+              "bytes, but only 5 bytes of the file follow");
+  }
+}
+
 TEST_CASE("EXR sampling and size: what oceanref cannot hold is refused, naming the channel") {
   const TempDir dir;
   // Written: an empty image; a channel whose sampling does not divide the size.

@@ -47,6 +47,17 @@ TEST_CASE("scene: defaults and values are read") {
   const Scene g = parse_scene(golden);
   CHECK(g.waves.sizes.size() == 3);
   CHECK(g.waves.sizes[1] == doctest::Approx(61.803398874989485));
+  // Arrays land component by component (the settings-reach test changes both at once).
+  json flow = minimal();
+  flow["waves"]["synthesis"] = "tiling_and_blending";
+  flow["waves"]["tiling"] = json::parse(R"({"flow": "circular", "flow_center": [10, -30]})");
+  const Scene f = parse_scene(flow);
+  CHECK(f.waves.tiling.flow.center_x == 10.0);
+  CHECK(f.waves.tiling.flow.center_z == -30.0);
+  flow["camera"] = json::parse(R"({"position": [1, 20, -3], "look_at": [4, -5, 60]})");
+  const Scene c = parse_scene(flow);
+  CHECK(c.camera.position == glm::dvec3{1.0, 20.0, -3.0});
+  CHECK(c.camera.look_at == glm::dvec3{4.0, -5.0, 60.0});
 }
 
 TEST_CASE("scene: every bad value is rejected with its JSON path") {
