@@ -328,7 +328,14 @@ TEST_CASE("spectral tables: linear interpolation between the published wavelengt
     }
     CHECK(interpolate(*table, table->front().wavelength - 0.5) == 0.0);
     CHECK(interpolate(*table, table->back().wavelength + 0.5) == 0.0);
+    CHECK(std::isnan(interpolate(*table, std::nan(""))));
   }
+  // A table of one point: its value at its wavelength, 0 beside it; no table: 0.
+  const std::vector<SpectralPoint> one{{500.0, 2.5}};
+  CHECK(interpolate(one, 500.0) == 2.5);
+  CHECK(interpolate(one, std::nextafter(500.0, 0.0)) == 0.0);
+  CHECK(interpolate(one, std::nextafter(500.0, 1e3)) == 0.0);
+  CHECK(interpolate({}, 500.0) == 0.0);
   // Two published values: the oxygen band's k_g at 765 nm (between 3.0 at 760 and 0.210 at 770)
   // and water vapour's k_wa at 695 nm (between 0.016 and 0.024).
   CHECK(interpolate(kMixedGasAbsorption, 765.0) == doctest::Approx(1.605).epsilon(1e-14));

@@ -2,8 +2,10 @@
 // continuity at every branch point.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "core/quadrature.h"
 #include "spectrum/frequency_spectra.h"
@@ -194,6 +196,52 @@ TEST_CASE("Unified: the peak's phase speed is U10/Omega_c, and u* follows from i
           doctest::Approx(std::sqrt(kGravity / s.peak_wavenumber)).epsilon(1e-6));
     const double z0 = 3.7e-5 * u * u / kGravity * std::pow(p.inverse_wave_age, 0.9);
     CHECK(p.friction_velocity == doctest::Approx(0.41 * u / std::log(10.0 / z0)).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("wavenumber breakpoints: 0, k_p 2^j for j = -6 ... 12 below k_max, k_m, k_max") {
+  const Spectrum s = make(SpectrumModel::jonswap);
+  const double kp = s.peak_wavenumber;
+  std::vector<double> all{0.0};
+  for (int j = -6; j <= 12; ++j) all.push_back(kp * std::pow(2.0, j));
+  all.push_back(HUGE_VAL);
+  CHECK(wavenumber_breakpoints(s, HUGE_VAL) == all);
+  // A k_max inside the range cuts it (k_p·2^3 itself is not below it).
+  CHECK(wavenumber_breakpoints(s, 8.0 * kp) == std::vector<double>{0.0, kp / 64, kp / 32, kp / 16,
+                                                                   kp / 8, kp / 4, kp / 2, kp,
+                                                                   2 * kp, 4 * kp, 8 * kp});
+  // Unified: its k_m joins, in order.
+  const Spectrum u = make(SpectrumModel::unified);
+  std::vector<double> b = wavenumber_breakpoints(u, HUGE_VAL);
+  CHECK(std::is_sorted(b.begin(), b.end()));
+  const auto k_m = std::find(b.begin(), b.end(), u.unified.capillary_wavenumber);
+  REQUIRE(k_m != b.end());
+  b.erase(k_m);
+  std::vector<double> rest{0.0};
+  for (int j = -6; j <= 12; ++j) rest.push_back(u.peak_wavenumber * std::pow(2.0, j));
+  rest.push_back(HUGE_VAL);
+  CHECK(b == rest);
+}
+
+TEST_CASE("Unified spreading of another model: c_p is that model's peak phase speed, u* from it") {
+  // Every other model spread by the Unified spreading (Gamper eq. 3.72) takes c_p = ω_p/k_p at
+  // its own peak, and z0 and u* from U10 and that c_p as above.
+  for (const SpectrumModel model : {SpectrumModel::jonswap, SpectrumModel::pierson_moskowitz,
+                                    SpectrumModel::donelan, SpectrumModel::tma}) {
+    CAPTURE(static_cast<int>(model));
+    SpectrumSettings in;
+    in.model = model;
+    in.spreading = SpreadingModel::unified;
+    in.wind_speed = 12.0;
+    in.fetch = 3.0e4;
+    if (model == SpectrumModel::tma) in.depth = 30.0;
+    const Spectrum s = make_spectrum(in);
+    const double u = in.wind_speed;
+    const double c_p = s.peak_frequency / s.peak_wavenumber;
+    CHECK(s.unified.peak_phase_speed == doctest::Approx(c_p).epsilon(1e-12));
+    const double z0 = 3.7e-5 * u * u / in.gravity * std::pow(u / c_p, 0.9);
+    CHECK(s.unified.friction_velocity ==
+          doctest::Approx(0.41 * u / std::log(10.0 / z0)).epsilon(1e-12));
   }
 }
 

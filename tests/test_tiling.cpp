@@ -240,6 +240,18 @@ TEST_CASE(
       CHECK(std::fabs((zp.x - zm.x) / (2 * h) - raw(p, Field::ddx_dz)) < tolerance);
       CHECK(std::fabs((xp.z - xm.z) / (2 * h) - p.ddz_dx) < tolerance);
       CHECK(std::fabs((zp.z - zm.z) / (2 * h) - (1.0 + raw(p, Field::ddz_dz))) < tolerance);
+      // displaced_point_derivatives (Newton's Jacobian in the surface tracer): the same columns.
+      const DisplacedPointDerivatives d =
+          displaced_point_derivatives(t.ocean, t.fields, {}, x, z, Interpolation::bicubic);
+      const std::array<double, 3> dx{(xp.x - xm.x) / (2 * h), (xp.height - xm.height) / (2 * h),
+                                     (xp.z - xm.z) / (2 * h)};
+      const std::array<double, 3> dz{(zp.x - zm.x) / (2 * h), (zp.height - zm.height) / (2 * h),
+                                     (zp.z - zm.z) / (2 * h)};
+      for (std::size_t k = 0; k < 3; ++k) {
+        CHECK(std::fabs(d.d_dx0[k] - dx[k]) < tolerance);
+        CHECK(std::fabs(d.d_dz0[k] - dz[k]) < tolerance);
+      }
+      CHECK(d.point.height == c.height);
       ++checked;
     }
     CHECK(checked > 300);

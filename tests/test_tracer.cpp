@@ -3,6 +3,7 @@
 // and in a render: the ray tracer sees what the rasterizer sees on the same displaced grid.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -166,6 +167,75 @@ TEST_CASE("tracer: each quadtree box is its block's box, padded by 1e-9 of its s
     }
   }
   CHECK(leaves == static_cast<std::size_t>((g.columns - 1) * (g.rows - 1)));
+}
+
+TEST_CASE("tracer: the smallest grids, one cell wide or tall, are traced") {
+  // A grid of 2 columns or 2 rows is one strip of cells: its tree has a leaf per cell and a ray
+  // straight down hits it; a grid of one column or row has no cells and no tree.
+  for (const std::pair<int, int>& size : {std::pair{2, 2}, std::pair{2, 5}, std::pair{5, 2}}) {
+    const int columns = size.first, rows = size.second;
+    const TestGrid g = make_grid(columns, rows, [](double, double) { return 0.0; });
+    const BoundsTree tree = build_bounds_tree(g.view());
+    int leaves = 0;
+    for (const BoundsTree::Node& n : tree.nodes) leaves += n.children[0] < 0 ? 1 : 0;
+    CHECK(leaves == (columns - 1) * (rows - 1));
+    // (0.25, 0.5) lies in cell (0, 0)'s first triangle.
+    const RayHit hit = trace_ray(g.view(), tree, {0.25, 3.0, 0.5}, {0.0, -1.0, 0.0});
+    CHECK(hit.triangle == 0);
+    CHECK(hit.t == doctest::Approx(3.0));
+  }
+  CHECK(
+      build_bounds_tree(make_grid(1, 4, [](double, double) { return 0.0; }).view()).nodes.empty());
+}
+
+TEST_CASE("tracer: the triangle tree splits each node at the median centroid, longest axis") {
+  // Every inner node of build_triangle_tree: its triangles' centroids span a box; the first
+  // child holds the lower half (rounded down) of them along the box's longest axis (x, then y,
+  // then z on ties), the second the rest. A grid 9 x 4 wide: x at the root, z deeper down.
+  const TestGrid g =
+      make_grid(9, 4, [](double x, double z) { return 1e-3 * std::sin(x + 2.0 * z); });
+  const BoundsTree tree = build_triangle_tree(g.view());
+  const auto& triangles = *g.view().triangles;
+  const auto centroid = [&](int t) {
+    const auto& v = triangles[static_cast<std::size_t>(t)];
+    return (g.vertices[v[0]] + g.vertices[v[1]] + g.vertices[v[2]]) / 3.0;
+  };
+  std::vector<std::vector<int>> under(tree.nodes.size());
+  for (std::size_t k = tree.nodes.size(); k-- > 0;) {  // children come after their parent
+    const BoundsTree::Node& n = tree.nodes[k];
+    if (n.children[0] < 0) {
+      under[k] = {n.first};
+      continue;
+    }
+    for (const int c : n.children) {
+      const std::vector<int>& u = under[static_cast<std::size_t>(c)];
+      under[k].insert(under[k].end(), u.begin(), u.end());
+    }
+  }
+  REQUIRE(under[0].size() == triangles.size());
+  int inner = 0, along_z = 0;
+  for (std::size_t k = 0; k < tree.nodes.size(); ++k) {
+    const BoundsTree::Node& n = tree.nodes[k];
+    if (n.children[0] < 0) continue;
+    ++inner;
+    glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+    for (const int t : under[k]) {
+      lo = glm::min(lo, centroid(t));
+      hi = glm::max(hi, centroid(t));
+    }
+    const glm::dvec3 e = hi - lo;
+    const int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
+    along_z += axis == 2 ? 1 : 0;
+    const std::vector<int>& first = under[static_cast<std::size_t>(n.children[0])];
+    const std::vector<int>& second = under[static_cast<std::size_t>(n.children[1])];
+    CHECK(first.size() == under[k].size() / 2);
+    double first_max = -HUGE_VAL, second_min = HUGE_VAL;
+    for (const int t : first) first_max = std::max(first_max, centroid(t)[axis]);
+    for (const int t : second) second_min = std::min(second_min, centroid(t)[axis]);
+    CHECK(first_max <= second_min + 1e-12);
+  }
+  CHECK(inner == static_cast<int>(triangles.size()) - 1);
+  CHECK(along_z > 0);
 }
 
 TEST_CASE("tracer: each triangle-tree box is its triangles' box, padded by 1e-9 of its size") {

@@ -1,6 +1,8 @@
 // Spectral data tables (data, not formulas). Every table names its source.
 #include "sky/spectral_tables.h"
 
+#include <cmath>
+
 namespace oceanref {
 
 // CIE 1931 2° standard observer, x̄ ȳ z̄, 380–780 nm every 5 nm (CIE 015:2018, table of the
@@ -82,6 +84,7 @@ const std::vector<SpectralPoint> kWaterVapourAbsorption{
     {780, 0.600e-3}, {790, 0.175e-1}, {800, 0.360e-1}};
 
 double interpolate(const std::vector<SpectralPoint>& table, double wavelength) {
+  if (std::isnan(wavelength)) return wavelength;
   if (table.empty() || wavelength < table.front().wavelength ||
       wavelength > table.back().wavelength) {
     return 0.0;
@@ -94,7 +97,7 @@ double interpolate(const std::vector<SpectralPoint>& table, double wavelength) {
       return a.value + t * (b.value - a.value);
     }
   }
-  return table.back().value;
+  return table.back().value;  // a one-point table at its wavelength
 }
 
 }  // namespace oceanref

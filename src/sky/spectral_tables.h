@@ -28,7 +28,8 @@ extern const std::vector<SpectralPoint> kOzoneAbsorption;        // k_o [1/cm]
 extern const std::vector<SpectralPoint> kMixedGasAbsorption;     // k_g [1/km]
 extern const std::vector<SpectralPoint> kWaterVapourAbsorption;  // k_wa [1/cm]
 
-// Linear interpolation in a table; 0 outside it.
+// Linear interpolation in a table (wavelengths increasing); 0 outside it, NaN for a NaN
+// wavelength.
 double interpolate(const std::vector<SpectralPoint>& table, double wavelength);
 
 }  // namespace oceanref

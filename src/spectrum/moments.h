@@ -27,7 +27,8 @@ struct SpectralMoments {
   double mss_z_error = 0.0;
 };
 
-// Breakpoints for integrals over k ∈ (0, k_max]: 0, k_p·2^j around the peak, k_max (or +∞).
+// Breakpoints for integrals over k ∈ (0, k_max], increasing: 0, k_p·2^j for j = −6 … 12 (k_p/64
+// to 4096 k_p) below k_max, the Unified spectrum's k_m when below k_max, then k_max (or +∞).
 std::vector<double> wavenumber_breakpoints(const Spectrum& s, double k_max);
 
 // m0 = ∫Ψ dk over k ∈ (0, k_max] (k_max may be +∞). Throws std::runtime_error if the
