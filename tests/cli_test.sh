@@ -536,21 +536,16 @@ FAKE_FFMPEG_FAIL=1 PATH="$tmp/fakebin:$PATH" expect 2 'ffmpeg failed to assemble
 [ ! -e "$tmp/fv.mp4" ] || fail "render --video: a video although ffmpeg failed"
 [ ! -e "$tmp/.oceanref-fv.partial.mp4" ] || fail "render --video: ffmpeg's partial output is left after it failed"
 # No ffmpeg to run: PATH unset, or its only ffmpeg not executable.
-cp "$tmp/fakebin/ffmpeg" "$tmp/noexec_ffmpeg" && mkdir -p "$tmp/noexec" && mv "$tmp/noexec_ffmpeg" "$tmp/noexec/ffmpeg"
-chmod -x "$tmp/noexec/ffmpeg"
-for path_setting in unset "$tmp/noexec"; do
+mkdir -p "$tmp/noexec" && cp "$tmp/fakebin/ffmpeg" "$tmp/noexec/ffmpeg" && chmod -x "$tmp/noexec/ffmpeg"
+for path_setting in "-u PATH" "PATH=$tmp/noexec"; do
   checks=$((checks + 1))
-  if [ "$path_setting" = unset ]; then
-    env -u PATH "$bin_path" render "$tmp/seq.json" -o "$tmp/np_#.exr" --png "$tmp/np_#.png" \
-      --frames 0:1 --video "$tmp/np.mp4" >/dev/null 2>"$tmp/err"
-  else
-    PATH="$path_setting" "$bin_path" render "$tmp/seq.json" -o "$tmp/np_#.exr" --png "$tmp/np_#.png" \
-      --frames 0:1 --video "$tmp/np.mp4" >/dev/null 2>"$tmp/err"
-  fi
+  # shellcheck disable=SC2086 # env's option and its value, or one assignment
+  env $path_setting "$bin_path" render "$tmp/seq.json" -o "$tmp/np_#.exr" --png "$tmp/np_#.png" \
+    --frames 0:1 --video "$tmp/np.mp4" >/dev/null 2>"$tmp/err"
   code=$?
   { [ "$code" -eq 2 ] && grep -q -- '--video: needs ffmpeg on PATH' "$tmp/err"; } ||
-    fail "render --video with PATH $path_setting: exit $code, $(cat "$tmp/err")"
-  [ ! -e "$tmp/np_0.exr" ] || fail "render --video with PATH $path_setting rendered before refusing"
+    fail "render --video with env $path_setting: exit $code, $(cat "$tmp/err")"
+  [ ! -e "$tmp/np_0.exr" ] || fail "render --video with env $path_setting rendered before refusing"
 done
 # The stand-in found in a folder of PATH that is neither the first nor the last (PATH holds only
 # these three folders while oceanref runs, so no other ffmpeg answers).
