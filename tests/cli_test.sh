@@ -1104,6 +1104,13 @@ expect 2 'tile1.piece: tile 1 again' merge "$scene" "$tmp/tile0.piece" "$tmp/til
 expect 2 'tile0.piece: rendered from another scene' merge "$source_dir/reference/scenes/golden/pm_high_sun.json" "$tmp/tile0.piece" "$tmp/tile1.piece" "$tmp/tile2.piece" -o "$tmp/x.exr"
 expect 2 'default_small.json: not an oceanref render piece' merge "$scene" "$scene" -o "$tmp/x.exr"
 [ -e "$tmp/x.exr" ] && fail "a refused merge wrote its output"
+# merge's inputs are the scene and the pieces: an output onto either is refused, the file kept.
+cp "$scene" "$tmp/merge_scene.json"
+expect 2 '^oceanref: --output: .*is the input .*merge_scene.json; write the output to another file$' \
+  merge "$tmp/merge_scene.json" "$tmp/tile0.piece" "$tmp/tile1.piece" "$tmp/tile2.piece" -o "$tmp/merge_scene.json"
+cmp -s "$scene" "$tmp/merge_scene.json" || fail "merge -o SCENE changed the scene file"
+expect 2 '^oceanref: --png: .*is the input .*tile1.piece; write the output to another file$' \
+  merge "$scene" "$tmp/tile0.piece" "$tmp/tile1.piece" "$tmp/tile2.piece" -o "$tmp/x.exr" --png "$tmp/tile1.piece"
 
 # --- acf: the autocorrelation of the displacement (Lutz eq. 22) ---------------------------------
 cat >"$tmp/acf_periodic.json" <<'JSON'

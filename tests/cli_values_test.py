@@ -1221,6 +1221,25 @@ def compare_report_pictures():
             heat = png_from_data_uri(re.search(r'<img class="heat" src="([^"]+)"', section)[1], tmp)
             check(np.abs(heat - heat_colours(m["rel_map"])).max() <= 1,
                   f"compare --report: {name}'s heat map is not the error's colour scale")
+            # The legend: a 300-pixel bar of the same scale, ticks at each decade and the
+            # threshold R = 2e-3 marked where it lies, (log10 R + 9)/9 of the way: 210 px.
+            legend = re.search(r'<div class="legend">(.*?)</div> relative error', section)
+            check(legend is not None, f"compare --report: {name} has no legend")
+            if legend is None:
+                continue
+            bar = png_from_data_uri(re.search(r'<img src="([^"]+)"[^>]*alt="colour bar"',
+                                              legend[1])[1], tmp)
+            decades = -9 + 9 * (np.arange(300) + 0.5) / 300
+            check(bar.shape == (14, 300, 3) and
+                  np.abs(bar - heat_colours(10.0 ** decades)[None, :, :]).max() <= 1,
+                  f"compare --report: {name}'s colour bar is not the heat map's scale")
+            ticks = re.findall(r'<span class="tick" style="left:(\d+)px">1e(-?\d+)</span>', legend[1])
+            check(ticks == [(str(300 * k // 9), str(k - 9)) for k in range(10)],
+                  f"compare --report: {name}'s legend ticks {ticks}")
+            marks = re.findall(r'<span class="threshold" style="left:(\d+)px"', legend[1])
+            check(marks == [str(round(300 * (math.log10(2e-3) + 9) / 9))] == ["210"] and
+                  "the white mark is the threshold R = 0.002" in section,
+                  f"compare --report: {name}'s threshold mark at {marks} px, expected 210")
 
 
 def heat_colours(e):

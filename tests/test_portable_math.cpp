@@ -5,8 +5,10 @@
 
 #include <bit>
 #include <cfenv>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -85,6 +87,41 @@ TEST_CASE("sincos equals sin and cos bit for bit") {
     CHECK(std::bit_cast<std::uint64_t>(s.sin) == std::bit_cast<std::uint64_t>(math::sin(x)));
     CHECK(std::bit_cast<std::uint64_t>(s.cos) == std::bit_cast<std::uint64_t>(math::cos(x)));
   }
+}
+
+// IEEE 754-2019 §6.2: an operation on a signalling NaN delivers a quiet NaN (as glibc's libm
+// does); passing the argument back unchanged would hand a backend a bit pattern no arithmetic
+// makes. The NaN is built at run time so that no call is folded at compile time.
+TEST_CASE("a signalling NaN comes back quiet from every function") {
+  volatile std::uint64_t bits = 0x7ff0000000000001u;  // exponent all ones, quiet bit clear
+  const double snan = std::bit_cast<double>(bits + 0);
+  REQUIRE(std::isnan(snan));
+  REQUIRE((std::bit_cast<std::uint64_t>(snan) & 0x0008000000000000u) == 0);
+  const auto quiet = [](double y) {
+    return std::isnan(y) && (std::bit_cast<std::uint64_t>(y) & 0x0008000000000000u) != 0;
+  };
+  using Unary = double (*)(double);
+  const std::vector<std::pair<const char*, Unary>> unary{
+      {"exp", math::exp},      {"expm1", math::expm1}, {"log", math::log},
+      {"log1p", math::log1p},  {"log10", math::log10}, {"sin", math::sin},
+      {"cos", math::cos},      {"tan", math::tan},     {"atan", math::atan},
+      {"asin", math::asin},    {"acos", math::acos},   {"sinh", math::sinh},
+      {"cosh", math::cosh},    {"tanh", math::tanh},   {"cbrt", math::cbrt},
+      {"erf", math::erf},      {"erfc", math::erfc},   {"lgamma", math::lgamma},
+      {"tgamma", math::tgamma}};
+  for (const auto& entry : unary) {
+    INFO(entry.first);
+    CHECK(quiet(entry.second(snan)));
+    CHECK(quiet(entry.second(-snan)));
+  }
+  CHECK(quiet(math::sincos(snan).sin));
+  CHECK(quiet(math::sincos(snan).cos));
+  CHECK(quiet(math::pow(snan, 2.0)));
+  CHECK(quiet(math::pow(2.0, snan)));
+  CHECK(quiet(math::atan2(snan, 1.0)));
+  CHECK(quiet(math::atan2(1.0, snan)));
+  CHECK(quiet(math::hypot(snan, 1.0)));
+  CHECK(quiet(math::hypot(1.0, snan)));
 }
 
 namespace {
