@@ -56,6 +56,32 @@ double hemisphere_albedo(const Vec3& view, SlopeVariance s, FresnelForm fresnel)
 }
 }  // namespace
 
+TEST_CASE("wind frame: T_x the wind projected on the plane of N, +Z's where the wind is along N") {
+  const auto check_frame = [](const SurfaceFrame& f, const Vec3& n, const Vec3& tx) {
+    for (std::size_t i = 0; i < 3; ++i) {
+      CHECK(f.normal[i] == doctest::Approx(n[i]).epsilon(1e-12));
+      CHECK(f.tangent_x[i] == doctest::Approx(tx[i]).epsilon(1e-12));
+    }
+    // T_y = N × T_x.
+    CHECK(f.tangent_y[0] == doctest::Approx(n[1] * tx[2] - n[2] * tx[1]).epsilon(1e-12));
+    CHECK(f.tangent_y[1] == doctest::Approx(n[2] * tx[0] - n[0] * tx[2]).epsilon(1e-12));
+    CHECK(f.tangent_y[2] == doctest::Approx(n[0] * tx[1] - n[1] * tx[0]).epsilon(1e-12));
+  };
+  // Flat: T_x is the wind (cos A, 0, sin A) itself.
+  check_frame(wind_frame({0.0, 1.0, 0.0}, 0.3), {0.0, 1.0, 0.0},
+              {std::cos(0.3), 0.0, std::sin(0.3)});
+  // N = (0.6, 0.8, 0) (not unit on input: normalised), wind +X: T_x = X − (X·N) N, normalised.
+  check_frame(wind_frame({1.2, 1.6, 0.0}, 0.0), {0.6, 0.8, 0.0}, {0.8, -0.6, 0.0});
+  // N = (1, 0, s) with s² below double's resolution, so N is unit as given and the wind +X has
+  // the projection (0, 0, −s), squared length s²: T_x = −Z down to s² = 1e-20 ...
+  check_frame(wind_frame({1.0, 0.0, 1.002e-10}, 0.0), {1.0, 0.0, 1.002e-10}, {0.0, 0.0, -1.0});
+  // ... and below it the projection of +Z, (−s, 0, 1) normalised: T_x flips sign there, which
+  // the BRDF does not see (the slope distribution is even in each slope).
+  check_frame(wind_frame({1.0, 0.0, 0.998e-10}, 0.0), {1.0, 0.0, 0.998e-10},
+              {-0.998e-10, 0.0, 1.0});
+  check_frame(wind_frame({1.0, 0.0, 0.0}, 0.0), {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
+}
+
 TEST_CASE("quadrature rules: Gauss-Legendre and Gauss-Hermite integrate polynomials exactly") {
   for (const int n : {1, 2, 5, 12, 40}) {
     const QuadratureRule gl = gauss_legendre(n);

@@ -23,25 +23,35 @@ using namespace oceanref;
 namespace {
 
 // The displacement-gradient residual of a set of waves in the wind frame, each ξ_n √P_n times
-// [[k_a²/k, k_a k_c/k], [k_a k_c/k, k_c²/k]] with ξ_n standard normal: its moments.
+// [[k_a²/k, k_a k_c/k], [k_a k_c/k, k_c²/k]] with ξ_n standard normal: its moments, the sum of
+// jacobian_moments_of_mode over the waves (checked against the definition below).
 struct WhitecapWave {
   double kx, kz, power;
 };
 JacobianMoments whitecap_moments_of(const std::vector<WhitecapWave>& waves, double c, double s) {
   JacobianMoments m;
   for (const WhitecapWave& w : waves) {
-    const double ka = c * w.kx + s * w.kz, kc = -s * w.kx + c * w.kz;
-    const double k2 = ka * ka + kc * kc;
-    m.aaaa += w.power * ka * ka * ka * ka / k2;
-    m.aaac += w.power * ka * ka * ka * kc / k2;
-    m.aacc += w.power * ka * ka * kc * kc / k2;
-    m.accc += w.power * ka * kc * kc * kc / k2;
-    m.cccc += w.power * kc * kc * kc * kc / k2;
+    m = m + jacobian_moments_of_mode(c * w.kx + s * w.kz, -s * w.kx + c * w.kz, w.power);
   }
   return m;
 }
 
 }  // namespace
+
+TEST_CASE("whitecaps: one wave's moments are P k_a^i k_c^j / k^2, i + j = 4") {
+  // (k_a, k_c) = (3, 4), k² = 25, P = 25: the moments are 3^i 4^j, exact in doubles.
+  const JacobianMoments m = jacobian_moments_of_mode(3.0, 4.0, 25.0);
+  CHECK(m.aaaa == 81.0);
+  CHECK(m.aaac == 108.0);
+  CHECK(m.aacc == 144.0);
+  CHECK(m.accc == 192.0);
+  CHECK(m.cccc == 256.0);
+  // Across the wind the odd moments change sign, the even ones do not.
+  const JacobianMoments mirrored = jacobian_moments_of_mode(3.0, -4.0, 25.0);
+  CHECK(mirrored.aaac == -108.0);
+  CHECK(mirrored.accc == -192.0);
+  CHECK(mirrored.aacc == 144.0);
+}
 
 TEST_CASE("whitecaps: the displacement-gradient moments of a band add up to its slope variances") {
   // aaaa + aacc = ∫k²Ψ∫cos²D and aacc + cccc = ∫k²Ψ∫sin²D (cos⁴ + cos²sin² = cos²); the

@@ -32,7 +32,9 @@ struct SurfaceFrame {
   Vec3 tangent_y;  // T_y = N × T_x, unit (crosswind)
 };
 // The frame of a normal N with T_x the projection of the wind direction (cos A, 0, sin A) on
-// the plane ⟂ N (+Y up, wind angle A from +X towards +Z).
+// the plane ⟂ N (+Y up, wind angle A from +X towards +Z). Where that projection's squared length
+// is below 1e-20 (the wind within 1e-10 rad of N, where it has no direction on the plane), T_x is
+// the projection of +Z instead.
 SurfaceFrame wind_frame(const Vec3& normal, double wind_angle);
 
 // p(ζ) = exp(−½(ζ_x²/σ_x² + ζ_y²/σ_y²)) / (2π σ_x σ_y)  (Bruneton 2010 eq. 4).
