@@ -3,9 +3,11 @@
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <chrono>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/parallel.h"
@@ -49,15 +51,18 @@ TEST_CASE("parallel_for: the smallest throwing index's exception reaches the cal
 }
 
 TEST_CASE("parallel_for: after a failure no further index starts") {
-  // Index 0 fails at once; the other worker may finish the indices it already took, but the
-  // loop stops long before the 200000 indices are done (each is a few nanoseconds; the failure
-  // is seen within microseconds).
+  // Index 0 fails at once; the other worker may finish the index it is running, and take a few
+  // more until the failing worker has recorded the failure (microseconds). Each other index
+  // takes a millisecond, so the loop's 4000 indices would take 2 s on two threads without the
+  // stop: only a failing worker kept off the CPU for a second lets 2000 of them run. (With bodies
+  // of a few nanoseconds, a loaded machine ran them all before the first throw had unwound.)
   std::atomic<int> ran{0};
-  CHECK_THROWS_AS(parallel_for(200000, 2,
+  CHECK_THROWS_AS(parallel_for(4000, 2,
                                [&](int i) {
                                  if (i == 0) throw std::runtime_error("first");
                                  ++ran;
+                                 std::this_thread::sleep_for(std::chrono::milliseconds(1));
                                }),
                   std::runtime_error);
-  CHECK(ran.load() < 100000);
+  CHECK(ran.load() < 2000);
 }
