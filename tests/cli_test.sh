@@ -385,7 +385,10 @@ for xy in 0,0 39,23; do
   awk -F, -v x="${xy%,*}" -v y="${xy#*,}" 'NR > 1 && NR <= 5 && !($2 > x && $2 < x + 1 && $3 > y && $3 < y + 1) { bad = 1 }
     END { exit bad || NR != 7 }' "$tmp/out" || fail "probe --pixel $xy: samples outside the pixel: $(cat "$tmp/out")"
 done
-expect 2 '--spp.*square' render "$tmp/render.json" -o "$tmp/x.exr" --spp 3
+# --spp: in [1, 32²] by the option, then a square number; each message names the range.
+expect 2 '^oceanref: --spp: must be a square number in \[1, 1024\], got 3$' render "$tmp/render.json" -o "$tmp/x.exr" --spp 3
+expect 2 '^oceanref: --spp: must be a square number in \[1, 1024\], got 1023$' render "$tmp/render.json" -o "$tmp/x.exr" --spp 1023
+expect 2 "^oceanref: --spp: must be in \\[1, 1024\\] \\(a square number\\), got '1025'" render "$tmp/render.json" -o "$tmp/x.exr" --spp 1025
 printf '{"waves": {}, "render": {"samples_per_pixel": 2}}' >"$tmp/bad.json"
 expect 2 'render.samples_per_pixel.*square' render "$tmp/bad.json" -o "$tmp/x.exr"
 printf '{"waves": {}, "camera": {"position": [0, 1, 0], "look_at": [0, 1, 0]}}' >"$tmp/bad.json"

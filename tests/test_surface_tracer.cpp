@@ -450,6 +450,41 @@ TEST_CASE("surface tree: every leaf box holds its cell's patch, and is no larger
   }
 }
 
+TEST_CASE("surface tree: the smallest surfaces, one cell wide or tall, are traced") {
+  const auto flat = [](const glm::dvec2& x0) {
+    return SurfacePoint{{x0.x, 0.0, x0.y}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}};
+  };
+  SurfaceTraceSettings settings;
+  settings.forward = {0.0, -1.0, 0.0};
+  // 2 × 2 vertices (one cell), 2 × 5 and 5 × 2: a leaf per cell, and a ray straight down onto
+  // the last cell hits it.
+  for (const auto& [columns, rows] : {std::pair{2, 2}, std::pair{2, 5}, std::pair{5, 2}}) {
+    const OwnedSurface s = make_surface(columns, rows, 4.0, 4.0, flat, {}, {});
+    int leaves = 0;
+    for (const BoundsTree::Node& n : s.tree.nodes) leaves += n.children[0] < 0 ? 1 : 0;
+    CHECK(leaves == (columns - 1) * (rows - 1));
+    const SurfaceHit hit =
+        trace_surface(s.view, s.tree, settings, {3.9, 5.0, 3.9}, {0.0, -1.0, 0.0});
+    CHECK(hit.hit);
+    CHECK(hit.cell == static_cast<std::int64_t>((columns - 1) * (rows - 1) - 1));
+  }
+  // One column or one row of vertices has no cell: no tree, and nothing is hit.
+  for (const auto& [columns, rows] : {std::pair{1, 4}, std::pair{4, 1}}) {
+    OwnedSurface s;
+    for (int k = 0; k < 4; ++k) {
+      s.base.push_back(columns == 1 ? glm::dvec2{0.0, k} : glm::dvec2{k, 0.0});
+      s.corners.push_back(flat(s.base.back()).position);
+    }
+    s.view.columns = columns;
+    s.view.rows = rows;
+    s.view.base = &s.base;
+    s.view.corners = &s.corners;
+    s.view.point = [flat](const glm::dvec2& x0) { return flat(x0).position; };
+    s.view.point_derivatives = flat;
+    CHECK(build_surface_tree(s.view).nodes.empty());
+  }
+}
+
 TEST_CASE("surface tracer: where Newton's method fails, the triangle's hit is kept, unrefined") {
   // A flat sea whose derivatives are given as zero: Newton's system is singular everywhere, so
   // every hit is the small patch's triangle hit (exact on a plane) with `refined` false — over
