@@ -33,7 +33,7 @@ struct SurfaceFrame {
 };
 // The frame of a normal N with T_x the projection of the wind direction (cos A, 0, sin A) on
 // the plane ⟂ N (+Y up, wind angle A from +X towards +Z). Where that projection's squared length
-// is below 1e-20 (the wind within 1e-10 rad of N, where it has no direction on the plane), T_x is
+// is below 1e-20 (the wind within 1e-10 rad of ±N, where it has no direction on the plane), T_x is
 // the projection of +Z instead.
 SurfaceFrame wind_frame(const Vec3& normal, double wind_angle);
 
