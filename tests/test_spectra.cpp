@@ -200,12 +200,16 @@ TEST_CASE("Unified: the peak's phase speed is U10/Omega_c, and u* follows from i
 }
 
 TEST_CASE("wavenumber breakpoints: 0, k_p 2^j for j = -6 ... 12 below k_max, k_m, k_max") {
+  // Over all k: 0, k_p 2^j for j = −6 … 12, +∞.
+  const auto doublings = [](double kp) {
+    std::vector<double> b{0.0};
+    for (int j = -6; j <= 12; ++j) b.push_back(kp * std::pow(2.0, j));
+    b.push_back(HUGE_VAL);
+    return b;
+  };
   const Spectrum s = make(SpectrumModel::jonswap);
   const double kp = s.peak_wavenumber;
-  std::vector<double> all{0.0};
-  for (int j = -6; j <= 12; ++j) all.push_back(kp * std::pow(2.0, j));
-  all.push_back(HUGE_VAL);
-  CHECK(wavenumber_breakpoints(s, HUGE_VAL) == all);
+  CHECK(wavenumber_breakpoints(s, HUGE_VAL) == doublings(kp));
   // A k_max inside the range cuts it (k_p·2^3 itself is not below it).
   CHECK(wavenumber_breakpoints(s, 8.0 * kp) == std::vector<double>{0.0, kp / 64, kp / 32, kp / 16,
                                                                    kp / 8, kp / 4, kp / 2, kp,
@@ -217,10 +221,7 @@ TEST_CASE("wavenumber breakpoints: 0, k_p 2^j for j = -6 ... 12 below k_max, k_m
   const auto k_m = std::find(b.begin(), b.end(), u.unified.capillary_wavenumber);
   REQUIRE(k_m != b.end());
   b.erase(k_m);
-  std::vector<double> rest{0.0};
-  for (int j = -6; j <= 12; ++j) rest.push_back(u.peak_wavenumber * std::pow(2.0, j));
-  rest.push_back(HUGE_VAL);
-  CHECK(b == rest);
+  CHECK(b == doublings(u.peak_wavenumber));
 }
 
 TEST_CASE("Unified spreading of another model: c_p is that model's peak phase speed, u* from it") {
