@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,9 @@
 #include "conformance/report.h"
 #include "conformance/sequence.h"
 #include "scene/scene.h"
+#include "spectrum/model.h"
 #include "waves/random.h"
+#include "waves/realization.h"
 
 using namespace oceanref;
 
@@ -546,6 +549,52 @@ TEST_CASE("float32 backend: its draws and stages against oceanref's, entry by en
       drawn += d.h0[i].re != 0.0 ? 1 : 0;
     }
     CHECK(drawn > 100);
+  }
+}
+
+TEST_CASE("float32 backend: at ω = ω_p exactly its spreading takes the branch of ω ≥ ω_p") {
+  // Hasselmann's and Gamper's s(ω) jump at the peak (6.97 below, 9.77 at and above: Gamper
+  // eq. 3.57, spectrum/spreading.cpp). The peak is set to the backend's own float ω of grid
+  // entries across the wind, so that its ω/ω_p is exactly 1; where oceanref's double ω is not
+  // below that float, oceanref is on the same branch and Θ agrees to float rounding (1e-5),
+  // while the other branch's s changes Θ there by a factor of about 5.
+  const std::string example =
+      std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/backend_example.json";
+  const Scene base = load_scene(example);
+  const std::vector<Float32Cascade> grid = float32_cascades(base.waves);
+  const int n = base.waves.resolution;
+  const double dk = wavenumber_spacing(base.waves.sizes[0]);
+  const double wind = 30.0 * std::numbers::pi / 180.0;
+  for (const char* model : {"hasselmann", "gamper"}) {
+    int compared = 0;
+    for (int b = 0; b < n; ++b) {
+      for (int a = 0; a < n; ++a) {
+        const double kx = wave_index(a, n) * dk, kz = wave_index(b, n) * dk;
+        // Entries about 90° from the wind, where |cos(θ/2)|^{2s} depends most on s.
+        if (!(kx != 0.0 || kz != 0.0) || std::fabs(std::cos(std::atan2(kz, kx) - wind)) > 0.3) {
+          continue;
+        }
+        const std::size_t i = grid_offset(a, b, n);
+        const float omega = grid[0].high.omega[i];
+        nlohmann::json j = nlohmann::json::parse(std::ifstream(example));
+        j["waves"]["spectrum"]["peak_omega"] = double(omega);
+        j["waves"]["spreading"] = {{"model", model}};
+        const Scene scene = parse_scene(j);
+        const Ocean ocean = realize_ocean(scene.waves, 1);
+        if (ocean.cascades[0].high.omega[i] < double(omega)) continue;  // oceanref's r < 1
+        const double expected = wavevector_spectrum(ocean.spectrum, kx, kz);
+        const std::vector<Float32Cascade> f32 = float32_cascades(scene.waves);
+        CAPTURE(model);
+        CAPTURE(a);
+        CAPTURE(b);
+        REQUIRE(f32[0].high.omega[i] == omega);
+        REQUIRE(expected > 0.0);
+        CHECK(std::fabs(double(f32[0].high.theta[i]) - expected) < 1e-5 * expected);
+        ++compared;
+      }
+    }
+    CAPTURE(model);
+    CHECK(compared >= 4);
   }
 }
 

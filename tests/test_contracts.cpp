@@ -17,6 +17,7 @@
 #include "conformance/fields_output.h"
 #include "conformance/golden.h"
 #include "conformance/render_output.h"
+#include "core/format.h"
 #include "io/exr.h"
 #include "io/sha256.h"
 #include "scene/scene.h"
@@ -136,6 +137,20 @@ TEST_CASE("fields file: parts, unique channel names, hashes of the doubles and t
   REQUIRE(f.parts.size() == 2);
   CHECK(f.parts[0].name == "c0");
   CHECK(f.parts[1].name == "sum");
+  // A cascade's part names its cascade, choppiness and band; sum, the combination of every
+  // cascade, has none of them, only the grid it shares with cascade 0 (docs/FILES.md).
+  const auto& c0 = f.parts[0].image.attributes;
+  const auto& sum = f.parts[1].image.attributes;
+  CHECK(c0.at("oceanref.cascade") == "0");
+  CHECK(c0.at("oceanref.cascade_choppiness") == format_number(scene.waves.choppiness[0]));
+  CHECK(c0.count("oceanref.band_rad_per_m") == 1);
+  for (const char* key :
+       {"oceanref.cascade", "oceanref.cascade_choppiness", "oceanref.band_rad_per_m"}) {
+    CAPTURE(key);
+    CHECK(sum.count(key) == 0);
+  }
+  CHECK(sum.at("oceanref.L_m") == c0.at("oceanref.L_m"));
+  CHECK(sum.at("oceanref.N") == std::to_string(scene.waves.resolution));
   std::set<std::string> names;  // field names: the channel names without ".V"
   std::size_t channels = 0;
   for (const ExrPart& p : f.parts) {
