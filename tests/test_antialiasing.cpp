@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "conformance/scene_objects.h"
 #include "raster/renderer.h"
@@ -67,14 +68,22 @@ TEST_CASE("Mastin anti-aliasing: the luminance contrast") {
 
 TEST_CASE(
     "Mastin anti-aliasing: flagged pixels are the mean of S² + 16 samples, others unchanged") {
-  for (const Renderer renderer : {Renderer::raster, Renderer::raytrace}) {
+  // At 1 and 4 spp: with S = 2 a flagged pixel shades its 2×2 samples again, each from its own
+  // fragment, before the 16 extra ones.
+  for (const auto& variant : {std::pair{Renderer::raster, 1},
+                              {Renderer::raytrace, 1},
+                              {Renderer::raster, 4},
+                              {Renderer::raytrace, 4}}) {
+    const Renderer renderer = variant.first;
+    const int spp = variant.second;
     CAPTURE(static_cast<int>(renderer));
+    CAPTURE(spp);
     const double threshold = 0.25;
-    const auto base = aa_prepare(aa_scene(0.0), renderer);
+    const auto base = aa_prepare(aa_scene(0.0), renderer, spp);
     const RenderedImage one = render(base->job, base->unresolved);
     const auto dense = aa_prepare(aa_scene(0.0), renderer, 16);
     const RenderedImage sixteen = render(dense->job, dense->unresolved);
-    const auto aa = aa_prepare(aa_scene(threshold), renderer);
+    const auto aa = aa_prepare(aa_scene(threshold), renderer, spp);
     const RenderedImage image = render(aa->job, aa->unresolved);
     const int w = image.width, h = image.height;
     const auto at = [&](int x, int y) { return static_cast<std::size_t>(y * w + x); };
@@ -99,10 +108,12 @@ TEST_CASE(
         const Vec3& got = image.radiance[at(x, y)];
         if (contrast > threshold) {
           ++flagged;
-          // (1 sample + the 16 of the 4×4 grid, which a 16-spp render holds) / 17.
+          // (the S² samples, whose mean the plain render holds, + the 16 of the 4×4 grid,
+          // which a 16-spp render holds) / (S² + 16).
           for (std::size_t c = 0; c < 3; ++c) {
             const double expected =
-                (one.radiance[at(x, y)][c] + 16.0 * sixteen.radiance[at(x, y)][c]) / 17.0;
+                (spp * one.radiance[at(x, y)][c] + 16.0 * sixteen.radiance[at(x, y)][c]) /
+                (spp + 16.0);
             CHECK(got[c] == doctest::Approx(expected).epsilon(1e-12));
           }
         } else {
@@ -118,7 +129,7 @@ TEST_CASE(
     REQUIRE(first_flagged >= 0);
     const int fx = first_flagged % w, fy = first_flagged / w;
     const double exact = contrast_at(fx, fy);
-    const auto at_exact = aa_prepare(aa_scene(exact), renderer);
+    const auto at_exact = aa_prepare(aa_scene(exact), renderer, spp);
     const RenderedImage edge = render(at_exact->job, at_exact->unresolved);
     CHECK(edge.radiance[at(fx, fy)] == one.radiance[at(fx, fy)]);
     long above = 0;
@@ -134,7 +145,7 @@ TEST_CASE(
     joined.insert(joined.end(), bottom.radiance.begin(), bottom.radiance.end());
     CHECK(testing::same_bits(joined, image.radiance));
     CHECK(top.antialiased_pixels + bottom.antialiased_pixels == image.antialiased_pixels);
-    const auto single = aa_prepare(aa_scene(threshold), renderer, 1, 1);
+    const auto single = aa_prepare(aa_scene(threshold), renderer, spp, 1);
     CHECK(testing::same_bits(render(single->job, single->unresolved).radiance, image.radiance));
   }
 }
