@@ -196,6 +196,24 @@ TEST_CASE("Unified: the peak's phase speed is U10/Omega_c, and u* follows from i
           doctest::Approx(std::sqrt(kGravity / s.peak_wavenumber)).epsilon(1e-6));
     const double z0 = 3.7e-5 * u * u / kGravity * std::pow(p.inverse_wave_age, 0.9);
     CHECK(p.friction_velocity == doctest::Approx(0.41 * u / std::log(10.0 / z0)).epsilon(1e-12));
+    // α_m = 10⁻²[1 + ln(u*/c_m)] below c_m, 10⁻²[1 + 3 ln(u*/c_m)] above (Gamper §3.4); u* is
+    // 0.18 (5 m/s), 0.41 and 0.98 against c_m = 0.23: both branches.
+    const double l = std::log(p.friction_velocity / p.min_phase_speed);
+    const double alpha_m = 0.01 * (p.friction_velocity < p.min_phase_speed ? 1.0 + l : 1.0 + 3 * l);
+    CHECK(p.short_wave_alpha == doctest::Approx(alpha_m).epsilon(1e-14));
+    // Ψ at the capillary peak k_m, where F_m = L_PM J_p (its exponential is 1): k³Ψ = B_l + B_h
+    // with B_h = ½ α_m (c_m/c) L_PM J_p, c from ω² = gk(1 + (k/k_m)²) (B_l from the library: at
+    // most 0.15% of B_h there, so a 1% error in α_m or B_h shows).
+    const double km = p.capillary_wavenumber;
+    const double c = std::sqrt(kGravity / km * 2.0);
+    const double lj = pierson_moskowitz_shape(km, p.peak_wavenumber) *
+                      unified_peak_enhancement(km, p.peak_wavenumber, p.gamma, p.sigma);
+    const double b_l = unified_curvature_term(
+        p.long_wave_alpha, p.peak_phase_speed, c,
+        unified_long_wave_side_effect(km, p.peak_wavenumber, p.inverse_wave_age, lj));
+    const double b_h = 0.5 * alpha_m * p.min_phase_speed / c * lj;
+    CHECK(b_l < 2e-3 * b_h);
+    CHECK(km * km * km * wavenumber_spectrum(s, km) == doctest::Approx(b_l + b_h).epsilon(1e-12));
   }
 }
 
