@@ -390,6 +390,14 @@ TEST_CASE("gerstner: draw settings and wave sets are validated with the field an
   CHECK(with([](GerstnerDraw& d) { d.count = 1025; }).find("count") == 0);
   CHECK(with([](GerstnerDraw& d) { d.direction_bins = 7; }).find("direction_bins") == 0);
   CHECK(with([](GerstnerDraw& d) { d.direction_bins = 0; }).find("direction_bins") == 0);
+  // The ends of the ranges are valid: one wave per direction bin, one bin, 1024 waves.
+  CHECK(with([](GerstnerDraw& d) { d.direction_bins = d.count; }).empty());
+  CHECK(with([](GerstnerDraw& d) { d.direction_bins = 1; }).empty());
+  CHECK(with([](GerstnerDraw& d) { d.direction_bins = 2 * d.count; }).find("direction_bins") == 0);
+  CHECK(with([](GerstnerDraw& d) {
+          d.count = 1024;
+          d.direction_bins = 1024;
+        }).empty());
   CHECK(with([](GerstnerDraw& d) { d.choppiness = 0.1; }).find("choppiness") == 0);
   CHECK(with([](GerstnerDraw& d) {
           d.choppiness = std::numeric_limits<double>::quiet_NaN();

@@ -14,8 +14,10 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "test_support.h"
@@ -195,6 +197,24 @@ TEST_CASE("a point within rounding of a node reads the node's value exactly, in 
     }
   }
   CHECK(off_node > 0);  // the rounding the snap exists for occurs among these points
+
+  // The node's own value, not a sum in which its neighbours carry weight 0: a node holding −0
+  // reads −0 (a sum adds +0 and loses the sign), and a NaN at the neighbouring nodes does not
+  // reach it (0 · NaN is NaN).
+  std::vector<double> h = g;
+  const int m = 9, k = 17;
+  h[grid_offset(m, k, n)] = -0.0;
+  for (const auto& [i, j] : {std::pair{m + 1, k}, {m - 1, k}, {m, k + 1}, {m + 2, k + 2}}) {
+    h[grid_offset(i, j, n)] = std::numeric_limits<double>::quiet_NaN();
+  }
+  const double x = m * spacing, z = k * spacing;
+  for (const double v :
+       {sample_periodic(h, n, size, x, z), sample_periodic_bicubic(h, n, size, x, z),
+        sample_periodic_gradient(h, n, size, x, z, Interpolation::bilinear).value,
+        sample_periodic_gradient(h, n, size, x, z, Interpolation::bicubic).value}) {
+    CHECK(v == 0.0);
+    CHECK(std::signbit(v));
+  }
 }
 
 TEST_CASE("bilinear: 1, x, z and xz reproduced exactly; x^2 is not (error h^2 t(1 - t))") {
