@@ -557,7 +557,7 @@ TEST_CASE("float32 backend: at ω = ω_p exactly its spreading takes the branch 
   // eq. 3.57, spectrum/spreading.cpp). The peak is set to the backend's own float ω of grid
   // entries across the wind, so that its ω/ω_p is exactly 1; where oceanref's double ω is not
   // below that float, oceanref is on the same branch and Θ agrees to float rounding (1e-5),
-  // while the other branch's s changes Θ there by a factor of about 5.
+  // while the other branch's s changes Θ there by a factor of 3 to 16.
   const std::string example =
       std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/backend_example.json";
   const Scene base = load_scene(example);
