@@ -517,7 +517,8 @@ TEST_CASE(
 
 TEST_CASE("float32 backend: its draws and stages against oceanref's, entry by entry") {
   // The shipped example, and the same with each cos-2s spreading of the backend plus a swell
-  // (Lutz eq. 29: s + 16 tanh(ω_p/ω) swell²), so that every branch of its spreading is compared.
+  // (Lutz eq. 29: s + 16 tanh(ω_p/ω) swell²), so that every branch of its spreading is compared,
+  // and one blended with the forward cos² lobe (Alimardanov Algorithm 2, spread_blend 0.4).
   const std::string example =
       std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/backend_example.json";
   std::vector<Scene> scenes{load_scene(example)};
@@ -526,6 +527,9 @@ TEST_CASE("float32 backend: its draws and stages against oceanref's, entry by en
     j["waves"]["spreading"] = {{"model", model}, {"swell", 0.7}};
     scenes.push_back(parse_scene(j));
   }
+  nlohmann::json blended = nlohmann::json::parse(std::ifstream(example));
+  blended["waves"]["spreading"] = {{"model", "mastin"}, {"spread_blend", 0.4}};
+  scenes.push_back(parse_scene(blended));
   for (std::size_t n = 0; n < scenes.size(); ++n) {
     const Scene& scene = scenes[n];
     CAPTURE(n);
