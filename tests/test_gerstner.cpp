@@ -418,9 +418,33 @@ TEST_CASE("gerstner: draw settings and wave sets are validated with the field an
   CHECK_NOTHROW(validate(g));
   g.choppiness = 0.5;
   CHECK_THROWS_AS(validate(g), SettingError);
-  g = gerstner_three_waves();
-  g.waves[1].amplitude = -1.0;
-  CHECK_THROWS_AS(validate(g), SettingError);
+  // Each field of a wave outside its range is refused under its own key; 0 amplitude and
+  // wavenumber are valid (a still wave).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto refused_key = [](const GerstnerWaves& waves) -> std::string {
+    try {
+      validate(waves);
+    } catch (const SettingError& e) {
+      return e.key();
+    }
+    return "";
+  };
+  const auto with_wave = [&](auto change) {
+    GerstnerWaves w = gerstner_three_waves();
+    change(w.waves[1]);
+    return refused_key(w);
+  };
+  CHECK(with_wave([](GerstnerWave& w) { w.amplitude = -1.0; }) == "amplitude");
+  CHECK(with_wave([&](GerstnerWave& w) { w.amplitude = inf; }) == "amplitude");
+  CHECK(with_wave([](GerstnerWave& w) { w.amplitude = 0.0; }).empty());
+  CHECK(with_wave([](GerstnerWave& w) { w.wavenumber = -0.5; }) == "wavenumber");
+  CHECK(with_wave([&](GerstnerWave& w) { w.wavenumber = nan; }) == "wavenumber");
+  CHECK(with_wave([](GerstnerWave& w) { w.wavenumber = 0.0; }).empty());
+  CHECK(with_wave([&](GerstnerWave& w) { w.direction = inf; }) == "direction");
+  CHECK(with_wave([&](GerstnerWave& w) { w.phase = nan; }) == "phase");
+  CHECK(with_wave([&](GerstnerWave& w) { w.angular_frequency = -inf; }) == "angular_frequency");
+  CHECK(with_wave([](GerstnerWave& w) { w.angular_frequency = -3.0; }).empty());
   g = gerstner_three_waves();
   CHECK_THROWS_AS(gerstner_loops(g, 0.0, 0.0, 0.0, 10.0, 0), std::invalid_argument);
   CHECK_THROWS_AS(gerstner_loops(g, 0.0, 0.0, 0.0, 0.0, 8), std::invalid_argument);

@@ -4,6 +4,9 @@
 // would and expects the throw; the correct call right beside it does not throw.
 #include <doctest/doctest.h>
 
+#include <limits>
+#include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -162,6 +165,28 @@ TEST_CASE("preconditions of the shading and raster stages fire on wrong calls") 
                   PreconditionError);
   CHECK_THROWS_AS(rasterize(vertices, two, {0, 2}, samples, 0, 10, 0.1, fragments),
                   PreconditionError);
+  // The camera: each refusal with its message; the ends of the field of view, (0, π), are out.
+  const auto camera_refusal = [](glm::dvec3 look_at, glm::dvec3 up, double fov, int w, int h) {
+    try {
+      (void)make_camera({0, 5, 0}, look_at, up, fov, w, h);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string fov_range = "camera: vertical field of view must be in (0, 180) degrees";
+  CHECK(camera_refusal({0, 0, 50}, {0, 1, 0}, 1.0, 32, 18).empty());
+  CHECK(camera_refusal({0, 5, 0}, {0, 1, 0}, 1.0, 32, 18) == "camera: look_at equals position");
+  CHECK(camera_refusal({0, 0, 50}, {0, 1, 0}, 0.0, 32, 18) == fov_range);
+  CHECK(camera_refusal({0, 0, 50}, {0, 1, 0}, std::numbers::pi, 32, 18) == fov_range);
+  CHECK(camera_refusal({0, 0, 50}, {0, 1, 0}, std::numeric_limits<double>::quiet_NaN(), 32, 18) ==
+        fov_range);
+  CHECK(camera_refusal({0, 0, 50}, {0, 1, 0}, 3.1, 32, 18).empty());
+  CHECK(camera_refusal({0, 0, 50}, {0, 1, 0}, 1.0, 0, 18) == "camera: image size must be >= 1");
+  CHECK(camera_refusal({0, 0, 50}, {0, 1, 0}, 1.0, 32, 0) == "camera: image size must be >= 1");
+  CHECK(camera_refusal({0, 0, 50}, {0, 1, 0}, 1.0, 1, 1).empty());
+  CHECK(camera_refusal({0, -5, 0}, {0, 1, 0}, 1.0, 32, 18) ==
+        "camera: up must not be parallel to the viewing direction");
   // Projected grid settings.
   const Camera camera = make_camera({0, 5, 0}, {0, 0, 50}, {0, 1, 0}, 1.0, 32, 18);
   ProjectedGridSettings settings;
