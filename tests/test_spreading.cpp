@@ -157,6 +157,14 @@ TEST_CASE("Donelan beta: the published constants jump by < 1.3%; Donelan-Banner 
   // β → 0 as ω → 0: the sech² spreading tends to the uniform 1/(2π).
   CHECK(sech2_spreading(2.0, donelan_banner_beta(1e-9)) ==
         doctest::Approx(0.5 / kPi).epsilon(1e-9));
+  // Either side of βπ = 1e-4, where β/tanh(βπ) switches to its series (1 + x²/3)/π: the
+  // normalization there is x/tanh x = 1 + x²/3 − x⁴/45 (the next term, 2x⁶/945, below 2e-25),
+  // to 1e-15.
+  for (const double x : {0.5e-4, 0.999e-4, 1.001e-4, 2e-4}) {
+    CAPTURE(x);
+    const double expected = (1.0 + x * x / 3.0 - x * x * x * x / 45.0) / (2.0 * kPi);
+    CHECK(sech2_spreading(0.0, x / kPi) == doctest::Approx(expected).epsilon(1e-15));
+  }
 }
 
 TEST_CASE("unified spreading: centrosymmetric, 1 + Delta cos 2theta, Delta in (0, 1]") {
