@@ -50,6 +50,12 @@ TEST_CASE("compare: ULP distance and the metrics of a known difference") {
   CHECK(ulp_distance(1.0f, std::nextafter(1.0f, 2.0f)) == 1);
   CHECK(ulp_distance(-0.0f, 0.0f) == 0);
   CHECK(ulp_distance(std::nextafter(0.0f, -1.0f), std::nextafter(0.0f, 1.0f)) == 2);
+  // NaN: no distance from a number (the largest), none from another NaN, whatever its sign.
+  constexpr long long kFar = std::numeric_limits<long long>::max();
+  CHECK(ulp_distance(kNaN, 1.0f) == kFar);
+  CHECK(ulp_distance(-1.0f, kNaN) == kFar);
+  CHECK(ulp_distance(kNaN, kInf) == kFar);
+  CHECK(ulp_distance(kNaN, -kNaN) == 0);
   const ExrPart g = part({{"R", 1, {1.0f, 2.0f, 3.0f, 4.0f}}}, 2, 2);
   ExrPart c = g;
   c.image.channels[0].values[3] = 4.5f;
@@ -254,6 +260,8 @@ TEST_CASE("compare: inputs it cannot compare fairly are refused, naming what is 
         "pixel_error.R holds a value that is not a finite error");
   }
   // Profiles: every key's type and presence.
+  refused([] { parse_profile(R"({"default": {"rel": 1})", "f"); }, "f: not valid JSON: ");
+  refused([] { parse_profile("[1]", "f"); }, "f: a profile is a JSON object");
   refused([] { parse_profile(R"({"name": "x"})", "f"); },
           "f: a profile needs \"default\" or \"channels\"");
   refused([] { parse_profile(R"({"channels": [{"rel": 1}]})", "f"); },
