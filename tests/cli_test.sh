@@ -729,7 +729,7 @@ expect 0 '^result: pass' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --rel 1e30 --fl
 checks=$((checks + 1))
 "$bin" compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --rel 1e30 --floor 1 --min-ssim 0.9999999 >"$tmp/out" 2>&1
 [ $? -eq 1 ] || fail "compare --min-ssim above the SSIM did not exit 1"
-grep -q 'min_ssim 1: FAIL' "$tmp/out" || fail "compare --min-ssim: no failing SSIM line: $(cat "$tmp/out")"
+grep -q 'min_ssim 0.9999999: FAIL' "$tmp/out" || fail "compare --min-ssim: no failing SSIM line: $(cat "$tmp/out")"
 expect 2 '--min-ssim' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --min-ssim 1.5
 expect 2 'excludes' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --profile x.json --min-ssim 0.5
 expect 0 '"result": "pass"' compare "$tmp/r_spp1.exr" "$tmp/r1.exr" --abs 1e30 --format json

@@ -1289,6 +1289,49 @@ def compare_report_single_parts():
 compare_report_single_parts()
 
 
+def compare_report_nonfinite_and_ssim():
+    """compare --report counts a non-finite mismatch in the rule and in its channel's heading and
+    paints the pixel magenta in the colour overview; a profile's min_ssim is stated beside the
+    SSIM as given (not rounded) with its verdict, pass at 0.5 and FAIL at 0.999999 for the same
+    1% noise."""
+    with tempfile.TemporaryDirectory() as tmp:
+        rng = np.random.default_rng(3)
+        g = rng.uniform(1.0, 2.0, (16, 16, 3)).astype(np.float32)
+        c = (g * (1 + rng.normal(0, 0.01, g.shape))).astype(np.float32)
+        gp, cp, np_ = (os.path.join(tmp, n) for n in ("g.exr", "c.exr", "nan.exr"))
+        write_rgb(gp, g)
+        write_rgb(cp, c)
+        nan = g.copy()
+        nan[4, 9, 1] = np.nan
+        write_rgb(np_, nan)
+        report_dir = os.path.join(tmp, "nan")
+        subprocess.run([binary, "compare", np_, gp, "--report", report_dir], capture_output=True)
+        html = open(os.path.join(report_dir, "index.html")).read()
+        check("a non-finite mismatch always fails (<b>1 non-finite mismatches</b>)." in html,
+              "compare --report: the rule does not count the non-finite mismatch")
+        headings = re.findall(r'<h3>[^<]*G: FAIL[^\n]*', html)
+        check(len(headings) == 1 and ", <b>1 non-finite mismatches</b></h3>" in headings[0],
+              f"compare --report: channel G's heading {headings}")
+        flip = re.search(r'<figure class="flip" data-golden="([^"]+)" data-candidate="([^"]+)"', html)
+        overview = png_from_data_uri(flip[2], tmp)
+        magenta = (overview == (255, 0, 255)).all(axis=-1)
+        check(magenta[4, 9] and magenta.sum() == 1,
+              f"compare --report: the non-finite pixel is not the one magenta pixel "
+              f"({int(magenta.sum())} magenta)")
+        for min_ssim, verdict in ((0.5, "pass"), (0.999999, "FAIL")):
+            profile = os.path.join(tmp, "profile.json")
+            open(profile, "w").write(json.dumps({"default": {"rel": 1}, "min_ssim": min_ssim}))
+            report_dir = os.path.join(tmp, f"ssim{verdict}")
+            subprocess.run([binary, "compare", cp, gp, "--profile", profile, "--report", report_dir],
+                           capture_output=True)
+            html = open(os.path.join(report_dir, "index.html")).read()
+            check(f", min_ssim {min_ssim}: {verdict}</p>" in html,  # as given, not rounded
+                  f"compare --report with min_ssim {min_ssim}: no '{verdict}' verdict beside SSIM")
+
+
+compare_report_nonfinite_and_ssim()
+
+
 def compare_suggest_refusals():
     """compare --suggest refuses runs no threshold can accept, naming the run and the channel: a
     NaN against a number, a difference where the golden is 0 (with --floor 0), and a candidate

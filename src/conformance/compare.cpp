@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/format.h"
 #include "core/math.h"
 
 namespace oceanref {
@@ -954,7 +955,7 @@ std::string comparison_text(const Comparison& c) {
         out << "not computed (" << p.ssim.reason << ")";
       }
       if (p.min_ssim) {
-        out << ", min_ssim " << short_number(*p.min_ssim) << ": "
+        out << ", min_ssim " << shortest_number(*p.min_ssim) << ": "
             << (p.ssim.computed && p.ssim.value >= *p.min_ssim ? "pass" : "FAIL");
       }
       out << '\n';

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/format.h"
 #include "core/math.h"
 #include "io/output_file.h"
 #include "io/png.h"
@@ -439,7 +440,7 @@ void write_report(const std::string& directory, const std::string& golden_name,
                                : "not computed (" + escape(p.ssim.reason) + ")")
            << "</b>";
       if (p.min_ssim) {
-        html << ", min_ssim " << short_number(*p.min_ssim) << ": "
+        html << ", min_ssim " << shortest_number(*p.min_ssim) << ": "
              << (p.ssim.computed && p.ssim.value >= *p.min_ssim ? "pass" : "FAIL");
       }
       html << "</p>\n";
