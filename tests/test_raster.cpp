@@ -263,5 +263,13 @@ TEST_CASE("projected grid: flat sea vertices are ray-plane hits; viewing cases")
     CHECK(p.visible);
     CHECK(p.projector_position.y >= s.displacement_bound + 1.0);
     for (const glm::dvec2& b : p.base) CHECK((std::isfinite(b.x) && std::isfinite(b.y)));
+    // Level or looking up (the first and last): the projector aims at the point ahead on the
+    // plane at 10× its height (projected_grid.h, 3.).
+    if (c.forward.y >= -1e-6) {
+      const glm::dvec3 ahead = glm::normalize(glm::dvec3(c.forward.x, 0.0, c.forward.z));
+      const glm::dvec3 expected = p.projector_position + 10.0 * p.projector_position.y * ahead;
+      CHECK(glm::length(p.projector_target - glm::dvec3(expected.x, 0.0, expected.z)) <
+            1e-12 * p.projector_position.y);
+    }
   }
 }
