@@ -150,6 +150,11 @@ TEST_CASE("Donelan beta: the published constants jump by < 1.3%; Donelan-Banner 
   // Gamper eq. 3.65 as printed: 2.61·0.56^1.3 = 1.2287 vs 1.24 (0.9%), 2.4417 vs 2.4372 at 0.95
   // (0.2%), 1.2376 vs 1.24 at 1.6 (0.2%): inherent to the 3-digit constants.
   for (const double r : {0.56, 0.95, 1.6}) CHECK(jump(donelan_beta, r) < 0.013);
+  // Each branch point belongs to the branch eq. 3.65 gives it: 0.56 to "otherwise" (1.24),
+  // 0.95 to 2.28 r^−1.3, 1.6 to "otherwise".
+  CHECK(donelan_beta(0.56) == 1.24);
+  CHECK(donelan_beta(0.95) == doctest::Approx(2.28 * std::pow(0.95, -1.3)).epsilon(1e-15));
+  CHECK(donelan_beta(1.6) == 1.24);
   // Donelan–Banner with ε = −0.4 + 0.8393 exp(−0.567 ln(r²)): 10^ε(1.6) = 1.2376 meets
   // 2.28·1.6^−1.3 to 1e−3; reading ln(r)² instead would give 2.19, a 77% jump.
   CHECK(jump(donelan_banner_beta, 1.6) < 1e-3);
