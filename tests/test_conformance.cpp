@@ -580,7 +580,8 @@ TEST_CASE("float32 backend: at ω = ω_p exactly its spreading takes the branch 
   // while the other branch's s changes Θ there by a factor of 3 to 16.
   const std::string example =
       std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/backend_example.json";
-  const Scene base = load_scene(example);
+  const nlohmann::json example_json = nlohmann::json::parse(std::ifstream(example));
+  const Scene base = parse_scene(example_json);
   const std::vector<Float32Cascade> grid = float32_cascades(base.waves);
   const int n = base.waves.resolution;
   const double dk = wavenumber_spacing(base.waves.sizes[0]);
@@ -596,7 +597,7 @@ TEST_CASE("float32 backend: at ω = ω_p exactly its spreading takes the branch 
         }
         const std::size_t i = grid_offset(a, b, n);
         const float omega = grid[0].high.omega[i];
-        nlohmann::json j = nlohmann::json::parse(std::ifstream(example));
+        nlohmann::json j = example_json;
         j["waves"]["spectrum"]["peak_omega"] = double(omega);
         j["waves"]["spreading"] = {{"model", model}};
         const Scene scene = parse_scene(j);
