@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <vector>
 
@@ -250,6 +251,13 @@ TEST_CASE("strict parsing: command-line numbers") {
         "--n: must be in [0, 1024], got '-1'");
   CHECK(usage_error([] { (void)cli::parse_number_list("--l", "1,x", "[0, 1] each"); }) ==
         "--l: expected a finite number in [0, 1] each, got 'x'");
+  // errno belongs to the C library and outlives a call: an earlier out-of-range number (or any
+  // libc call) leaves ERANGE behind, and the next valid number must still be read, so each parse
+  // clears errno before strtod / strtoll.
+  errno = ERANGE;
+  CHECK(parse_integer_in("--n", "7", 0, 10) == 7);
+  errno = ERANGE;
+  CHECK(parse_number_in("--x", "2.5", 0.0, 10.0) == 2.5);
 }
 
 TEST_CASE("strict parsing: memory sizes, each end of [16M, 1048576G] and just beyond") {
