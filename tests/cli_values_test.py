@@ -1573,6 +1573,23 @@ def render_fields_acf_flags():
             if row["cascade"] == "0":
                 close(float(row["direct"]), float(row["fft"]), 1e-9,
                       f"fields --at 0,0: cascade 0 {row['field']} direct sum against the FFT")
+        # Off the nodes, the `sum` rows are the shaded surface: in each column (grids read
+        # bilinearly, direct sums) the normal is (-slope_x, 1, -slope_z) normalized, and the last
+        # column is fft - direct.
+        rows = {r["field"]: r for r in csv.DictReader(io.StringIO(subprocess.run(
+            [binary, "fields", fast, "--at", "3.7,11.2"], capture_output=True, text=True).stdout))
+            if r["cascade"] == "sum"}
+        for column in ("fft", "direct"):
+            sx, sz = float(rows["slope_x"][column]), float(rows["slope_z"][column])
+            norm = math.sqrt(sx * sx + 1 + sz * sz)
+            for axis, value in (("x", -sx / norm), ("y", 1 / norm), ("z", -sz / norm)):
+                close(float(rows["normal_" + axis][column]), value, 1e-12,
+                      f"fields --at 3.7,11.2: the sum's {column} normal_{axis} from its slopes")
+        for field, r in rows.items():
+            check(float(r["difference"]) == float(r["fft"]) - float(r["direct"]),
+                  f"fields --at 3.7,11.2: sum {field}: difference is not fft - direct")
+        check(float(rows["slope_x"]["fft"]) != float(rows["slope_x"]["direct"]),
+              "fields --at 3.7,11.2: the grids and the direct sum agree off the nodes (no test)")
         # acf: lags k/S periods up to --length, acf(0) = 1; a single cascade of period L along x
         # or z repeats after one period; the start points and lines change the estimate.
         single = json.loads(json.dumps(base))
