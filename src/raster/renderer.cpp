@@ -478,6 +478,7 @@ struct SampleValue {
   double depth = 0.0;
   bool hit = false;
 };
+static_assert(sizeof(SampleValue) == kResolvedSampleBytes, "refinement_bytes counts these");
 
 SampleValue sample_value(const SampleProbe& p) {
   return {p.radiance, p.lighting_error,    p.lighting.sun, p.lighting.sky, p.lighting.sea,
@@ -624,8 +625,7 @@ int refined_samples_per_axis(int samples_per_axis, int refinements) {
 double refinement_bytes(int samples_per_axis, int refinements) {
   const double n = refined_samples_per_axis(samples_per_axis, refinements);
   const double finest = n * n;
-  return finest * static_cast<double>(sizeof(Fragment)) +
-         (finest + finest / 9.0) * static_cast<double>(sizeof(SampleValue));
+  return finest * static_cast<double>(sizeof(Fragment) + 2 * kResolvedSampleBytes);
 }
 
 double luminance_contrast(const Vec3& a, const Vec3& b) {
@@ -909,9 +909,19 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
       row_evaluations += p.lighting.evaluations;
       return sample_value(p);
     };
-    std::vector<SampleValue> values;  // the pixel's samples, row-major
+    // The pixel's samples (row-major) and the next level's, which trade places at each
+    // refinement; reserved at the finest level once, so that what a thread holds is what
+    // refinement_bytes counts, whatever the pixels' refinements.
+    std::vector<SampleValue> values;
     std::vector<SampleValue> finer;
     std::vector<Fragment> window;
+    if (adaptive) {
+      const auto finest =
+          static_cast<std::size_t>(refined_samples_per_axis(s, job.max_refinements));
+      values.reserve(finest * finest);
+      finer.reserve(finest * finest);
+      window.reserve(finest * finest);
+    }
     std::vector<std::uint32_t> subset;  // the triangles that reach the pixel
     // The n×n samples of pixel (x, image_row) refined to 3n×3n: the n×n are the centres of its
     // 3×3 cells, the others shaded from their fragments (the pixel's footprint rasterized at the

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <span>
@@ -177,8 +178,11 @@ double luminance_contrast(const Vec3& a, const Vec3& b);
 // S·3^refinements: the samples per axis of a pixel of S×S refined `refinements` times (the cap
 // of adaptive sampling; S without refinement).
 int refined_samples_per_axis(int samples_per_axis, int refinements);
+// The bytes the resolve keeps of one sample (its radiance, layers and hit; sizeof(SampleValue)).
+inline constexpr std::size_t kResolvedSampleBytes = 208;
 // The scratch memory of one thread's adaptive refinement from S×S samples up to
-// S·3^refinements per axis: the samples of two levels and the fragments of one [bytes].
+// n = S·3^refinements per axis: two sample buffers (a level and the next, trading places) and one
+// fragment buffer, each reserved for the finest level's n² [bytes].
 double refinement_bytes(int samples_per_axis, int refinements);
 
 // The standard error of the mean of a pixel's samples, per channel:
