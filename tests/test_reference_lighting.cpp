@@ -601,6 +601,37 @@ TEST_CASE("lighting_terms, reference: each term its integral's, evaluations thei
   }
 }
 
+TEST_CASE("lighting_terms, reference: a term that misses its tolerance marks the sample") {
+  // At a relative tolerance of 1e-14 and no absolute floor, below what each integral's
+  // quadrature resolves in double precision, every term stops at its cap unconverged; with that
+  // term alone on, the sample is unconverged, and at the default tolerance it is converged.
+  const Case& c = kSweep.front();
+  const Sky sky = sky_of(c);
+  const SurfaceFrame f = wind_frame(c.normal, 0.3);
+  for (const std::string term : {"sun", "sky", "sea"}) {
+    CAPTURE(term);
+    ShadingSettings sh;
+    sh.sun = term == "sun";
+    sh.sky = term == "sky";
+    sh.sea = term == "sea";
+    FrameLighting light = frame_lighting(sky, sh);
+    CHECK(lighting_terms(sh, sky, light, c.view, f, c.s, false).converged);
+    sh.tolerance = 1e-14;
+    light.sun_reflectance_floor = 0.0;
+    light.radiance_floor = {0.0, 0.0, 0.0};
+    const bool alone =
+        sh.sun ? reflected_sun_reference(light.sun_direction, kSunAngularRadius, c.view, f, c.s,
+                                         sh.brdf, sh.tolerance, light.sun_reflectance_floor)
+                     .converged
+        : sh.sky ? reflected_sky_reference(c.view, f, c.s, sky, sh.brdf, sh.tolerance,
+                                           light.radiance_floor)
+                       .converged
+                 : mean_fresnel_reference(c.view, f, c.s, sh.brdf, sh.tolerance).converged;
+    REQUIRE_FALSE(alone);
+    CHECK_FALSE(lighting_terms(sh, sky, light, c.view, f, c.s, false).converged);
+  }
+}
+
 TEST_CASE("a perfect mirror (sigma2 = 0) is rejected, not integrated") {
   const Sky sky = make_sky(2.5, 1.0, 1.0);
   const SurfaceFrame f = wind_frame(unit(0, 1, 0), 0.0);

@@ -84,6 +84,14 @@ TEST_CASE("scene: every bad value is rejected with its JSON path") {
   s = minimal();
   s["waves"]["cascades"]["sizes"] = json::array({60, 200});  // increasing with partitioning
   CHECK(error_path(s) == "waves.cascades");
+  // Strictly decreasing: two equal sizes would own the same band (the end of the range).
+  s["waves"]["cascades"]["sizes"] = json::array({200, 60, 60});
+  CHECK(error_path(s) == "waves.cascades");
+  s["waves"]["cascades"]["sizes"] = json::array({200, 60, 59.999});
+  CHECK(error_path(s).empty());
+  s["waves"]["band_partitioning"] = false;  // without partitioning, any order
+  s["waves"]["cascades"]["sizes"] = json::array({60, 60, 200});
+  CHECK(error_path(s).empty());
   s = minimal();
   s["waves"]["cascades"]["sizes"][1] = "big";
   CHECK(error_path(s) == "waves.cascades.sizes[1]");
