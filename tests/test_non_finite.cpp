@@ -2,6 +2,7 @@
 // is and which term it came from (raster/renderer.h require_finite, conformance/fields_output).
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "raster/renderer.h"
@@ -57,6 +58,14 @@ TEST_CASE("spectral_moments refuses k_max where its integrands overflow") {
   const Spectrum s = make_spectrum(SpectrumSettings{});
   CHECK_THROWS_AS(spectral_moments(s, 1e308), std::invalid_argument);
   CHECK_THROWS_AS(spectral_moments(s, kMaxMomentWavenumber * 2.0), std::invalid_argument);
+  // The range is (0, 1e6] rad/m or inf: an empty band (k_max = 0) is refused with the others.
+  for (const double k_max : {0.0, -0.0, -1.0, -HUGE_VAL, std::nan("")}) {
+    CAPTURE(k_max);
+    CHECK_THROWS_WITH_AS(spectral_moments(s, k_max),
+                         doctest::Contains("k_max must be in (0, 1e6] rad/m or inf"),
+                         std::invalid_argument);
+  }
+  CHECK(spectral_moments(s, 1e-3).m0 >= 0.0);
   // Up to the limit it converges, and the slope moment keeps growing with k_max (log-divergent
   // for a k^-3 tail): it never falls back as it did past ~1e150 before.
   const SpectralMoments a = spectral_moments(s, 1e4);

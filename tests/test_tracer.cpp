@@ -309,3 +309,43 @@ TEST_CASE("two renderers: the ray tracer sees what the rasterizer sees, for any 
     if (adaptive) CHECK(traced.image.pixel_samples == raster.image.pixel_samples);
   }
 }
+
+TEST_CASE("tracer: a ray through a vertex or an edge gets weights in [0, 1], by the clamp") {
+  // Rounding puts such a ray just outside the triangle as often as inside: u or v a few ulps
+  // past 0 or 1, which intersect_triangle admits within its edge slack (1e-12) so that the ray
+  // hits one of the triangles sharing the edge. test_triangle clamps the hit into the triangle:
+  // its weights are then ≥ 0 and ≤ 1 exactly. Aimed at the vertices and edge midpoints of
+  // random triangles; some of the raw u and v must fall outside [0, 1] for this to test the clamp.
+  std::uint64_t state = 12345;
+  const auto uniform = [&] {  // xorshift64*, in [−1, 1)
+    state ^= state >> 12;
+    state ^= state << 25;
+    state ^= state >> 27;
+    return static_cast<double>((state * 0x2545F4914F6CDD1DULL) >> 11) * 0x1p-52 - 1.0;
+  };
+  int outside = 0, hits = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    TestGrid g{2, 2, {}, {{0, 1, 2}}, {false}};
+    for (int k = 0; k < 3; ++k) g.vertices.push_back({uniform(), 0.3 * uniform(), uniform()});
+    const glm::dvec3 origin{3.0 * uniform(), 5.0 + uniform(), 3.0 * uniform()};
+    const std::vector<glm::dvec3>& v = g.vertices;
+    for (const glm::dvec3& target :
+         {v[0], v[1], v[2], 0.5 * (v[0] + v[1]), 0.5 * (v[1] + v[2]), 0.5 * (v[2] + v[0])}) {
+      const glm::dvec3 direction = glm::normalize(target - origin);
+      double t = 0.0, u = 0.0, w = 0.0;
+      if (!intersect_triangle(origin, direction, v[0], v[1], v[2], t, u, w)) continue;
+      if (u < 0.0 || u > 1.0 || w < 0.0 || u + w > 1.0) ++outside;
+      const RayHit hit = trace_ray_brute_force(g.view(), origin, direction);
+      REQUIRE(hit.triangle == 0);
+      ++hits;
+      for (const double weight : hit.weights) {
+        CHECK(weight >= 0.0);
+        CHECK(weight <= 1.0);
+      }
+      CHECK(std::fabs(hit.weights[0] + hit.weights[1] + hit.weights[2] - 1.0) <= 0x1p-52);
+    }
+  }
+  CHECK(hits > 9000);
+  CHECK(outside > 100);
+  MESSAGE("hits ", hits, ", raw weights outside [0, 1]: ", outside);
+}
