@@ -13,6 +13,7 @@
 #include "raster/rasterizer.h"
 #include "raster/renderer.h"
 #include "scene/scene.h"
+#include "waves/footprint_filter.h"
 #include "waves/ocean.h"
 
 using namespace oceanref;
@@ -82,6 +83,38 @@ TEST_CASE("memory: the wave-grid estimate covers what a realized ocean holds") {
   // The estimate also counts h(k, t), the packed transform and its copies (transient) and all
   // eight fields on both grids (a multi-resolution ocean keeps three of them on the coarse grid
   // only), so it lies above what stays held, but within a factor of 2.5 (2.33 here).
+  CHECK(estimate >= held);
+  CHECK(estimate <= 2.5 * held);
+}
+
+TEST_CASE("memory: the footprint filter's estimate covers what its levels hold") {
+  WaveSettings w;
+  w.sizes = {120.0, 12.0};
+  w.resolution = 64;
+  w.low_resolution = 32;
+  w.choppiness = {-0.5, -0.5};
+  const Ocean ocean = realize_ocean(w, 1);
+  const FootprintFilter f =
+      make_footprint_filter(ocean, 1.5, Interpolation::bicubic, ShadingNormals::surface, false, 1);
+  REQUIRE(f.levels.size() >= 2);
+  double held = 0.0;
+  for (const FilterLevel& level : f.levels) {
+    for (const CascadeSpectra& c : level.ocean.cascades) {
+      for (const PatternSpectrum* s : {&c.low, &c.high}) {
+        held += static_cast<double>(s->h0.capacity() * sizeof(Complex) +
+                                    s->inverse_wavenumber.capacity() * sizeof(double) +
+                                    s->omega.capacity() * sizeof(double));
+      }
+    }
+    for (const CascadeFields& g : level.grids) {
+      for (const std::vector<double>& v : g.values) {
+        held += static_cast<double>(v.capacity() * sizeof(double));
+      }
+    }
+  }
+  // Each level counted as wave grids of its own sizes (wave_grid_bytes: with the transform's
+  // transient buffers, so above what stays held, within 2.5×: 2.33 here, over 13 levels).
+  const double estimate = footprint_filter_bytes(w);
   CHECK(estimate >= held);
   CHECK(estimate <= 2.5 * held);
 }

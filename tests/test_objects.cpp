@@ -123,6 +123,19 @@ TEST_CASE("objects: the section is validated key by key") {
   s = objects_scene_with("a.obj");
   s["objects"] = json::object();
   CHECK(error_of(s) == "objects");
+  // At most kMaxSceneObjects (64) objects: 64 are read, the 65th is refused with the limit.
+  s = objects_scene_with("a.obj");
+  s["objects"] = json::array();
+  for (std::size_t i = 0; i < kMaxSceneObjects; ++i) s["objects"].push_back({{"obj", "a.obj"}});
+  CHECK(error_of(s) == "");
+  CHECK(parse_scene(s).objects.size() == 64);
+  s["objects"].push_back({{"obj", "a.obj"}});
+  CHECK(error_of(s) == "objects");
+  try {
+    (void)parse_scene(s);
+  } catch (const SceneError& e) {
+    CHECK(std::string(e.what()).find("at most 64 objects") != std::string::npos);
+  }
 }
 
 TEST_CASE("objects: OBJ files are read relative to the scene, and their errors name the key") {

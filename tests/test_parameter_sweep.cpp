@@ -310,6 +310,7 @@ TEST_CASE("parameter sweep: every documented range drawn at once, eight scenes")
   const std::vector<Range> ranges = documented_ranges();
   Draw draw{915};
   std::vector<std::string> failures;
+  int valid = 0;
   for (int n = 0; n < 8; ++n) {
     json scene = tiny_scene();
     std::vector<std::string> keys;
@@ -318,9 +319,10 @@ TEST_CASE("parameter sweep: every documented range drawn at once, eight scenes")
       // sweep; the cost keys stay small (the render stays tiny).
       if (r.path == "waves.spectrum.phillips_suppression" || r.path == "waves.spectrum.depth" ||
           r.path == "waves.cascades.largest" || r.path == "waves.cascades.count" ||
-          r.path == "waves.cascades.sizes" || r.path == "shading.tolerance" ||
-          r.path.rfind("render.", 0) == 0 || r.path.rfind("grid.", 0) == 0 ||
-          r.path == "waves.foam.steps") {
+          r.path == "waves.cascades.sizes" || r.path == "waves.cascades.band_edges" ||
+          r.path == "shading.tolerance" || r.path.rfind("render.", 0) == 0 ||
+          r.path.rfind("grid.", 0) == 0 || r.path == "waves.foam.steps" ||
+          r.path == "waves.gerstner.direction_bins") {
         continue;
       }
       set_value(scene, r, point_in(r, draw));
@@ -328,8 +330,26 @@ TEST_CASE("parameter sweep: every documented range drawn at once, eight scenes")
     }
     scene["waves"]["spectrum"]["allow_extrapolation"] = true;
     scene["shading"]["whitecaps"] = true;
+    // Keys whose range depends on another's value, made consistent: one direction bin divides
+    // any count, and the wavelength band is put in order.
+    json& gerstner = scene["waves"]["gerstner"];
+    gerstner["direction_bins"] = 1;
+    if (gerstner.contains("min_wavelength") && gerstner.contains("max_wavelength") &&
+        gerstner["min_wavelength"] >= gerstner["max_wavelength"]) {
+      std::swap(gerstner["min_wavelength"], gerstner["max_wavelength"]);
+    }
+    // Every key is inside its documented range and the dependent ones agree, so each scene must
+    // get past validation to the render (a validation error that names a key would also pass
+    // run_case, and then the sweep would test nothing).
+    try {
+      (void)parse_scene(scene);
+      ++valid;
+    } catch (const SceneError& e) {
+      FAIL_CHECK("drawn scene " << n << " refused: " << e.what());
+    }
     const std::string failure = run_case(scene, keys);
     if (!failure.empty()) failures.push_back(failure + "\n  scene: " + scene.dump());
   }
+  CHECK(valid == 8);
   for (const std::string& f : failures) FAIL_CHECK(f);
 }

@@ -47,6 +47,7 @@ TEST_CASE("published values: huge-argument reduction (Ng 1992) and exact cases")
   // Values that are exact.
   CHECK(math::exp(0.0) == 1.0);
   CHECK(math::log(1.0) == 0.0);
+  CHECK(math::log10(1.0) == 0.0);
   CHECK(math::log10(1e22) == 22.0);
   CHECK(math::pow(2.0, 10.0) == 1024.0);
   CHECK(math::pow(-3.0, 3.0) == -27.0);

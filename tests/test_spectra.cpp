@@ -214,6 +214,19 @@ TEST_CASE("Unified: the peak's phase speed is U10/Omega_c, and u* follows from i
     const double b_h = 0.5 * alpha_m * p.min_phase_speed / c * lj;
     CHECK(b_l < 2e-3 * b_h);
     CHECK(km * km * km * wavenumber_spectrum(s, km) == doctest::Approx(b_l + b_h).epsilon(1e-12));
+    // Ψ at the peak k_p, every factor by hand: L_PM = e^(−5/4), J_p = γ (Γ = 1), F_p's
+    // exponential 1, so k_p³Ψ = ½ γ e^(−5/4) [α_p c_p/c + α_m (c_m/c) e^(−¼(k_p/k_m − 1)²)] with
+    // γ = 1.7 (+ 6 log10 Ω_c above Ω_c = 1) and α_p = 0.006 √Ω_c (Gamper §3.4). γ (1.7 to 3.1
+    // here: Ω_c from 0.95 to 1.7) scales both terms, so a wrong J_p or α_p shows in full.
+    const double omega = p.inverse_wave_age;
+    const double kp = s.peak_wavenumber;
+    const double gamma = omega < 1.0 ? 1.7 : 1.7 + 6.0 * std::log10(omega);
+    const double c_kp = std::sqrt(kGravity / kp * (1.0 + (kp / km) * (kp / km)));
+    const double x = kp / km - 1.0;
+    const double peak = 0.5 * gamma * std::exp(-1.25) *
+                        (0.006 * std::sqrt(omega) * p.peak_phase_speed / c_kp +
+                         alpha_m * p.min_phase_speed / c_kp * std::exp(-0.25 * x * x));
+    CHECK(kp * kp * kp * wavenumber_spectrum(s, kp) == doctest::Approx(peak).epsilon(1e-12));
   }
 }
 

@@ -1,6 +1,7 @@
 // Wave fields: realization, spectral synthesis, direct summation, cascades (Gamper ch. 4).
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "waves/mastin.h"
 #include "waves/ocean.h"
 #include "waves/random.h"
+#include "waves/surface.h"
 
 using namespace oceanref;
 
@@ -177,6 +179,34 @@ TEST_CASE("one wave: exact cosine, slopes, displacements, derivatives and Jacobi
       add_cascade(choppy, raw, -1.5);
       finish_combination(choppy);
       CHECK(std::fabs(choppy.jacobian - (1.0 - 1.5 * k * c)) < 1e-13);
+    }
+  }
+}
+
+TEST_CASE("one wave: the displaced surface's bounds are its amplitudes, axis by axis") {
+  // η = A cos(k·x − ωt) along x, then along z, with choppiness u: D = u (k/|k|) A sin(·), so
+  // |D_along| ≤ |u| A, |η| ≤ A and the crossed axis is flat (D_across = 0). Direct summation's
+  // bounds, Σ|g h| and Σ|g h||k_x|, Σ|g h||k_z|, are then attained: offset = (|u| A, A, 0) and
+  // lipschitz |u| A k, A k, 0 (x and z swapped for the wave along z).
+  const Spectrum s = jonswap();
+  const double size = 64.0, amplitude = 0.7, u = -0.8;
+  const int n = 16;
+  const double k = 3 * wavenumber_spacing(size);
+  for (const bool along_x : {true, false}) {
+    CAPTURE(along_x);
+    Ocean ocean;
+    ocean.spectrum = s;
+    const PatternSpectrum p = single_wave(s, size, n, along_x ? 3 : 0, along_x ? 0 : 3, amplitude);
+    ocean.cascades = {CascadeSpectra{p, p, u}};
+    const std::vector<EvolvedCascade> evolved = evolve_ocean(ocean, 1.3);
+    const DisplacedSurfaceBounds b =
+        displaced_surface_bounds(ocean, {}, evolved, Interpolation::direct);
+    const std::array<double, 3> offset{along_x ? -u * amplitude : 0.0, amplitude,
+                                       along_x ? 0.0 : -u * amplitude};
+    for (std::size_t c = 0; c < 3; ++c) {
+      CAPTURE(c);
+      CHECK(b.offset[c] == doctest::Approx(offset[c]).epsilon(1e-14));
+      CHECK(b.lipschitz[c] == doctest::Approx(offset[c] * k).epsilon(1e-14));
     }
   }
 }
