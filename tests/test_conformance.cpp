@@ -771,6 +771,12 @@ TEST_CASE("SSIM: a profile's min_ssim fails a part below it; parse errors name t
   CHECK_THROWS_WITH_AS(compare_parts({field}, {field}, {}, p), doctest::Contains("min_ssim"),
                        std::invalid_argument);
   CHECK(parse_profile(R"({"default": {"rel": 1}, "min_ssim": 0.98})", "t").min_ssim == 0.98);
+  // The range's ends are valid (1: only an identical image passes; −1: any image does).
+  CHECK(parse_profile(R"({"default": {"rel": 1}, "min_ssim": 1})", "t").min_ssim == 1.0);
+  CHECK(parse_profile(R"({"default": {"rel": 1}, "min_ssim": -1})", "t").min_ssim == -1.0);
+  CHECK_THROWS_WITH_AS(parse_profile(R"({"default": {"rel": 1}, "min_ssim": -1.0001})", "t"),
+                       doctest::Contains("min_ssim: must be a number in [-1, 1]"),
+                       std::invalid_argument);
   CHECK_THROWS_WITH_AS(parse_profile(R"({"default": {"rel": 1}, "min_ssim": 2})", "t"),
                        doctest::Contains("min_ssim: must be a number in [-1, 1]"),
                        std::invalid_argument);

@@ -87,6 +87,23 @@ TEST_CASE("k(omega) inverts omega(k) for every relation, depth and wavenumber") 
   CHECK(wavenumber_from_frequency(finite_depth(1.0), 0.0) == 0.0);
 }
 
+TEST_CASE("k(omega): a first bracket end that is already the root is returned as it is") {
+  // Capillary waves in deep water at small ω: (k/k_m)² vanishes beside 1 at k = ω²/g, so
+  // ω(ω²/g) rounds to ω itself for many ω; there the inverse's bracket [0, ω²/g] ends at the
+  // root and it must return ω²/g unchanged (a search that widened the bracket first would land
+  // within 2 ulp of it, not on it).
+  const Dispersion d = capillary();
+  int exact = 0;
+  for (double w = 1e-6; w < 1e-2; w *= 1.01) {
+    const double k = w * w / 9.81;
+    if (angular_frequency(d, k) != w) continue;
+    ++exact;
+    CAPTURE(w);
+    CHECK(wavenumber_from_frequency(d, w) == k);
+  }
+  CHECK(exact > 100);
+}
+
 TEST_CASE("tiny frequencies: the shallow-water limit k = omega/sqrt(gh) holds down to subnormals") {
   // ω(k) = k·c(k) keeps ω > 0 where g·k·tanh(kh) would underflow; the inverse must terminate
   // and return the shallow limit (relative error of the limit ~ (kh)²/6, far below 1e-14 here).

@@ -59,13 +59,19 @@ TEST_CASE("memory: a failed allocation names what it was for and how much") {
   CHECK(allocate_buffer<int>(3, "three", 7) == std::vector<int>{7, 7, 7});
 }
 
-TEST_CASE("memory: the wave-grid estimate covers what a realized ocean holds") {
+namespace {
+// Two cascades of 64² (N_h) and 32² (N_l).
+WaveSettings two_cascades() {
   WaveSettings w;
   w.sizes = {120.0, 12.0};
   w.resolution = 64;
   w.low_resolution = 32;
   w.choppiness = {-0.5, -0.5};
-  const Ocean ocean = realize_ocean(w, 1);
+  return w;
+}
+
+// The bytes an ocean's spectra (h0, 1/k, ω of both patterns) and its field grids hold.
+double held_bytes(const Ocean& ocean, const std::vector<CascadeFields>& grids) {
   double held = 0.0;
   for (const CascadeSpectra& c : ocean.cascades) {
     for (const PatternSpectrum* s : {&c.low, &c.high}) {
@@ -74,11 +80,19 @@ TEST_CASE("memory: the wave-grid estimate covers what a realized ocean holds") {
                                   s->omega.capacity() * sizeof(double));
     }
   }
-  for (const CascadeFields& f : synthesize_ocean(ocean, 1.5, 1)) {
+  for (const CascadeFields& f : grids) {
     for (const std::vector<double>& v : f.values) {
       held += static_cast<double>(v.capacity() * sizeof(double));
     }
   }
+  return held;
+}
+}  // namespace
+
+TEST_CASE("memory: the wave-grid estimate covers what a realized ocean holds") {
+  const WaveSettings w = two_cascades();
+  const Ocean ocean = realize_ocean(w, 1);
+  const double held = held_bytes(ocean, synthesize_ocean(ocean, 1.5, 1));
   const double estimate = wave_grid_bytes(w);
   // The estimate also counts h(k, t), the packed transform and its copies (transient) and all
   // eight fields on both grids (a multi-resolution ocean keeps three of them on the coarse grid
@@ -88,30 +102,13 @@ TEST_CASE("memory: the wave-grid estimate covers what a realized ocean holds") {
 }
 
 TEST_CASE("memory: the footprint filter's estimate covers what its levels hold") {
-  WaveSettings w;
-  w.sizes = {120.0, 12.0};
-  w.resolution = 64;
-  w.low_resolution = 32;
-  w.choppiness = {-0.5, -0.5};
+  const WaveSettings w = two_cascades();
   const Ocean ocean = realize_ocean(w, 1);
   const FootprintFilter f =
       make_footprint_filter(ocean, 1.5, Interpolation::bicubic, ShadingNormals::surface, false, 1);
   REQUIRE(f.levels.size() >= 2);
   double held = 0.0;
-  for (const FilterLevel& level : f.levels) {
-    for (const CascadeSpectra& c : level.ocean.cascades) {
-      for (const PatternSpectrum* s : {&c.low, &c.high}) {
-        held += static_cast<double>(s->h0.capacity() * sizeof(Complex) +
-                                    s->inverse_wavenumber.capacity() * sizeof(double) +
-                                    s->omega.capacity() * sizeof(double));
-      }
-    }
-    for (const CascadeFields& g : level.grids) {
-      for (const std::vector<double>& v : g.values) {
-        held += static_cast<double>(v.capacity() * sizeof(double));
-      }
-    }
-  }
+  for (const FilterLevel& level : f.levels) held += held_bytes(level.ocean, level.grids);
   // Each level counted as wave grids of its own sizes (wave_grid_bytes: with the transform's
   // transient buffers, so above what stays held, within 2.5×: 2.33 here, over 13 levels).
   const double estimate = footprint_filter_bytes(w);

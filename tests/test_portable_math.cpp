@@ -59,6 +59,13 @@ TEST_CASE("published values: huge-argument reduction (Ng 1992) and exact cases")
   CHECK(math::tgamma(5.0) == 24.0);
   CHECK(math::tgamma(21.0) == 2432902008176640000.0);
   CHECK(math::atan2(0.0, -1.0) == 0x1.921fb54442d18p+1);
+  // On the diagonals the ratio is 1 at every scale: the correctly rounded π/4 and 3π/4.
+  for (const double x : {1.0, 3.0e300, 2.0e-300, 5.0e-324}) {
+    CAPTURE(x);
+    CHECK(math::atan2(x, x) == 0x1.921fb54442d18p-1);
+    CHECK(math::atan2(x, -x) == 0x1.2d97c7f3321d2p+1);
+    CHECK(math::atan2(-x, -x) == -0x1.2d97c7f3321d2p+1);
+  }
   CHECK(std::signbit(math::atan2(-0.0, 1.0)));
   // Classical constants, correctly rounded.
   CHECK(math::exp(1.0) == 0x1.5bf0a8b145769p+1);

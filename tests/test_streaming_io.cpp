@@ -419,6 +419,11 @@ TEST_CASE("ExrRowWriter: deferred attributes set at the end give write_exr's byt
   // A finished writer takes no further call.
   CHECK_THROWS_AS(writer.finish(), std::logic_error);
   CHECK_THROWS_AS(writer.write_rows(band_of(image, 0, 1), 1), std::logic_error);
+  // Not even a deferred attribute (the file is written: a value set now would never reach it).
+  CHECK_THROWS_WITH_AS(writer.set_deferred("oceanref.z_last", "LATER"),
+                       doctest::Contains("ExrRowWriter::set_deferred after finish()"),
+                       std::logic_error);
+  CHECK(file_bytes(dir.file("deferred.exr")) == whole);
 }
 
 TEST_CASE("ExrRowWriter: deferred attributes it cannot locate are refused, leaving no file") {
