@@ -13,6 +13,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "conformance/lighting_map.h"
 #include "conformance/study.h"
@@ -25,6 +26,20 @@
 using namespace oceanref;
 
 namespace {
+// The comma-separated fields of each line of a bench's output that starts with `prefix`.
+std::vector<std::vector<std::string>> bench_rows(const std::string& text,
+                                                 const std::string& prefix) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(prefix, 0) != 0) continue;
+    std::istringstream fields(line);
+    rows.emplace_back();
+    for (std::string f; std::getline(fields, f, ',');) rows.back().push_back(f);
+  }
+  return rows;
+}
+
 Scene study_scene() {
   return load_scene(std::string(OCEANREF_SOURCE_DIR) +
                     "/reference/scenes/golden/mastin_spread_direct_tiny.json");
@@ -371,16 +386,9 @@ TEST_CASE("bench synthesis: the bilinear lookup's errors are |grid - direct| at 
   bench_synthesis(out, options);
   // The rows "bilinear,<field>,<max |direct|>,<max |bilinear - direct|>", read back.
   std::map<std::string, std::array<double, 2>> printed;
-  std::istringstream lines(out.str());
-  std::string line;
-  while (std::getline(lines, line)) {
-    if (line.rfind("bilinear,", 0) != 0) continue;
-    std::istringstream row(line.substr(9));
-    std::string field, direct, error;
-    std::getline(row, field, ',');
-    std::getline(row, direct, ',');
-    std::getline(row, error, ',');
-    printed[field] = {std::stod(direct), std::stod(error)};
+  for (const std::vector<std::string>& f : bench_rows(out.str(), "bilinear,")) {
+    REQUIRE(f.size() == 4);
+    printed[f[1]] = {std::stod(f[2]), std::stod(f[3])};
   }
   REQUIRE(printed.size() == 3);
   // The bench's ocean (JONSWAP 10 m/s, sizes 1000·(1−1/φ)^i m, seed 1) at t = 10 s, recomputed
@@ -421,15 +429,13 @@ TEST_CASE(
     "bench lighting: the shader sun BRDF's error where the exact one is within 1e-6 of its peak") {
   std::ostringstream out;
   bench_lighting(out, 16);
-  const std::string text = out.str();
-  const std::string name = "sun_brdf_schlick_rational_vs_exact,";
-  const std::size_t at = text.find(name);
-  REQUIRE(at != std::string::npos);
-  std::istringstream row(text.substr(at + name.size(), text.find('\n', at) - at - name.size()));
-  std::string max, mean, samples;
-  std::getline(row, max, ',');
-  std::getline(row, mean, ',');
-  std::getline(row, samples, ',');
+  // "sun_brdf_schlick_rational_vs_exact,<max>,<mean>,<samples>"
+  const auto rows = bench_rows(out.str(), "sun_brdf_schlick_rational_vs_exact,");
+  REQUIRE(rows.size() == 1);
+  REQUIRE(rows[0].size() == 4);
+  const std::string& max = rows[0][1];
+  const std::string& mean = rows[0][2];
+  const std::string& samples = rows[0][3];
   // The sweep again: σ² (crosswind 0.6 σ²) × view zenith 0–85° × 7 azimuths, the sun at 40° and
   // azimuth 0, T = 2.5; a view counts where the exact BRDF·cos exceeds 10⁻⁶ of its value at the
   // mirror direction of the sun about the mean normal, 2(n·s)n − s.
