@@ -572,12 +572,26 @@ TEST_CASE("float32 backend: its draws and stages against oceanref's, entry by en
   }
 }
 
-TEST_CASE("float32 backend: at ω = ω_p exactly its spreading takes the branch of ω ≥ ω_p") {
-  // Hasselmann's and Gamper's s(ω) jump at the peak (6.97 below, 9.77 at and above: Gamper
-  // eq. 3.57, spectrum/spreading.cpp). The peak is set to the backend's own float ω of grid
-  // entries across the wind, so that its ω/ω_p is exactly 1; where oceanref's double ω is not
-  // below that float, oceanref is on the same branch and Θ agrees to float rounding (1e-5),
-  // while the other branch's s changes Θ there by a factor of 3 to 16.
+TEST_CASE(
+    "float32 backend: at each branch point r = ω/ω_p of its spreading it takes oceanref's branch") {
+  // The spreading functions change formula at fixed r = ω/ω_p: Hasselmann's and Gamper's s(ω) at
+  // r = 1 (6.97 below, 9.77 at and above: Gamper eq. 3.57), Donelan's β at 0.56, 0.95 and 1.6 and
+  // Donelan-Banner's at 0.95 and 1.6 (Vincevičius eq. 1.12, spectrum/spreading.cpp). For each
+  // branch point c and each grid entry across the wind, ω_p is set so that the backend's float
+  // ω/ω_p is exactly float(c), and oceanref's double ω_p (which rounds to the backend's float ω_p)
+  // is moved within that rounding interval so that oceanref's r is on the side the float
+  // comparison takes at float(c): r ≥ c for the comparisons r < c, r ≤ 0.56 for Donelan's
+  // r > 0.56 (float(0.56) > 0.56). There Θ agrees to float rounding (1e-5), while the other branch
+  // changes Θ by 0.03 % (Banner's β is nearly continuous at 1.6) up to a factor of 16.
+  struct BranchPoint {
+    const char* model;
+    double ratio;
+    bool above;  // the float comparison at float(ratio) takes the branch above ratio
+  };
+  const BranchPoint points[] = {{"hasselmann", 1.0, true},    {"gamper", 1.0, true},
+                                {"donelan", 0.56, false},     {"donelan", 0.95, true},
+                                {"donelan", 1.6, true},       {"donelan-banner", 0.95, true},
+                                {"donelan-banner", 1.6, true}};
   const std::string example =
       std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/backend_example.json";
   const nlohmann::json example_json = nlohmann::json::parse(std::ifstream(example));
@@ -586,26 +600,39 @@ TEST_CASE("float32 backend: at ω = ω_p exactly its spreading takes the branch 
   const int n = base.waves.resolution;
   const double dk = wavenumber_spacing(base.waves.sizes[0]);
   const double wind = 30.0 * std::numbers::pi / 180.0;
-  for (const char* model : {"hasselmann", "gamper"}) {
+  for (const BranchPoint& point : points) {
+    CAPTURE(point.model);
+    CAPTURE(point.ratio);
+    const float ratio = static_cast<float>(point.ratio);
     int compared = 0;
     for (int b = 0; b < n; ++b) {
       for (int a = 0; a < n; ++a) {
         const double kx = wave_index(a, n) * dk, kz = wave_index(b, n) * dk;
-        // Entries about 90° from the wind, where |cos(θ/2)|^{2s} depends most on s.
+        // Entries about 90° from the wind, where the spreading depends most on s or β.
         if (!(kx != 0.0 || kz != 0.0) || std::fabs(std::cos(std::atan2(kz, kx) - wind)) > 0.3) {
           continue;
         }
         const std::size_t i = grid_offset(a, b, n);
         const float omega = grid[0].high.omega[i];
+        // A float ω_p with omega / ω_p == float(c) in float arithmetic, if one is near omega / c.
+        float peak = omega / ratio;
+        for (int step = 0; step < 8 && omega / peak != ratio; ++step) {
+          peak = std::nextafter(peak, omega / peak > ratio ? 1e30f : 0.0f);
+        }
+        if (omega / peak != ratio) continue;
+        // Oceanref's ω_p: 0.45 of a float ulp below (r up) or above (r down), same float.
+        const double ulp = double(std::nextafter(peak, 1e30f)) - double(peak);
+        const double peak_omega = double(peak) + (point.above ? -0.45 : 0.45) * ulp;
+        REQUIRE(static_cast<float>(peak_omega) == peak);
         nlohmann::json j = example_json;
-        j["waves"]["spectrum"]["peak_omega"] = double(omega);
-        j["waves"]["spreading"] = {{"model", model}};
+        j["waves"]["spectrum"]["peak_omega"] = peak_omega;
+        j["waves"]["spreading"] = {{"model", point.model}};
         const Scene scene = parse_scene(j);
         const Ocean ocean = realize_ocean(scene.waves, 1);
-        if (ocean.cascades[0].high.omega[i] < double(omega)) continue;  // oceanref's r < 1
+        const double r = ocean.cascades[0].high.omega[i] / ocean.spectrum.peak_frequency;
+        if (point.above ? r < point.ratio : r > point.ratio) continue;
         const double expected = wavevector_spectrum(ocean.spectrum, kx, kz);
         const std::vector<Float32Cascade> f32 = float32_cascades(scene.waves);
-        CAPTURE(model);
         CAPTURE(a);
         CAPTURE(b);
         REQUIRE(f32[0].high.omega[i] == omega);
@@ -614,7 +641,6 @@ TEST_CASE("float32 backend: at ω = ω_p exactly its spreading takes the branch 
         ++compared;
       }
     }
-    CAPTURE(model);
     CHECK(compared >= 4);
   }
 }

@@ -88,6 +88,63 @@ TEST_CASE("lighting map, quick sweep: reference within tolerance and estimates, 
   CHECK(lighting_map_svg(map).rfind("<svg", 0) == 0);
 }
 
+TEST_CASE("lighting map: an error is within the tolerance exactly when it is within its bound") {
+  // The map's error statistics (lighting_relative_error) and its count of tolerance misses
+  // (lighting_tolerance_bound) must read the tolerance the same way: for every integral, truth
+  // and value, the relative error is the largest |x − t| over the channels' bounds, times τ.
+  const LightingSweep sweep = make_lighting_sweep(lighting_map_sweep(true));
+  const LightingSun& sun = sweep.suns[0];
+  REQUIRE(sun.sun_floor > 0.0);
+  // By hand: F̄ = 0.9 is read relative to 1 − F̄ = 0.1; the sun's reflectance relative to itself
+  // above its floor and to the floor below; each sky channel relative to its own floor below it.
+  const double tau = 1e-6;
+  CHECK(lighting_relative_error(LightingIntegral::fresnel, sun, {0.9 + 1e-8, 0, 0}, {0.9, 0, 0}) ==
+        doctest::Approx(1e-7).epsilon(1e-6));
+  CHECK(lighting_tolerance_bound(LightingIntegral::fresnel, sun, tau, 0.9, 0) ==
+        doctest::Approx(1e-7).epsilon(1e-12));
+  CHECK(lighting_tolerance_bound(LightingIntegral::sun, sun, tau, 2.0, 0) == 2.0 * tau);
+  CHECK(lighting_tolerance_bound(LightingIntegral::sun, sun, tau, -0.1 * sun.sun_floor, 0) ==
+        tau * sun.sun_floor);
+  for (std::size_t c = 0; c < 3; ++c) {
+    CHECK(lighting_tolerance_bound(LightingIntegral::sky, sun, tau, 0.5 * sun.sky_floor[c], c) ==
+          tau * sun.sky_floor[c]);
+    CHECK(lighting_tolerance_bound(LightingIntegral::sky, sun, tau, -3.0 * sun.sky_floor[c], c) ==
+          tau * (3.0 * sun.sky_floor[c]));
+  }
+  // The identity over truths above, at and below the floors, F̄ from 0 to near 1, and values
+  // off by relative and absolute amounts in one or every channel.
+  const double scales[] = {0.0, 0.3, 1.0, 7.0, 1e3};
+  for (const LightingIntegral integral :
+       {LightingIntegral::sky, LightingIntegral::fresnel, LightingIntegral::sun}) {
+    for (const double scale : scales) {
+      for (int variant = 0; variant < 4; ++variant) {
+        Vec3 t{};
+        Vec3 x{};
+        for (std::size_t c = 0; c < 3; ++c) {
+          const double floor = integral == LightingIntegral::sky   ? sun.sky_floor[c]
+                               : integral == LightingIntegral::sun ? sun.sun_floor
+                                                                   : 0.1;
+          t[c] = integral == LightingIntegral::fresnel ? std::fmin(0.999, 0.1 * scale)
+                                                       : scale * floor * (1.0 + 0.2 * double(c));
+          const double delta = variant < 2 ? 1e-5 * (std::fabs(t[c]) + floor) : 1e-9 * floor;
+          x[c] = t[c] + (variant % 2 == 0 || c == 1 ? delta : -0.5 * delta);
+        }
+        double expected = 0.0;
+        const std::size_t channels = integral == LightingIntegral::sky ? 3 : 1;
+        for (std::size_t c = 0; c < channels; ++c) {
+          expected = std::fmax(expected, std::fabs(x[c] - t[c]) * tau /
+                                             lighting_tolerance_bound(integral, sun, tau, t[c], c));
+        }
+        CAPTURE(static_cast<int>(integral));
+        CAPTURE(scale);
+        CAPTURE(variant);
+        CHECK(lighting_relative_error(integral, sun, x, t) ==
+              doctest::Approx(expected).epsilon(1e-12));
+      }
+    }
+  }
+}
+
 TEST_CASE("lighting map plot: every point where its time and error put it, labels apart") {
   // A map written by hand (no timing): per integral two fast orders and two tolerances, times
   // and errors over several decades, one error of 0 (drawn at the floor, 1e-17).

@@ -186,11 +186,10 @@ Value reference_value(Integral integral, const Sweep& sweep, const Case& c, doub
   return v;
 }
 
-// The relative error of `x` against the truth `t`, as the renderer's tolerance reads it: the
-// sky per channel relative to max(|L|, 10⁻³·E_sky/π) (the largest channel counts), F̄ relative
-// to 1 − F̄ (the sea term is linear in it), the sun's reflectance relative to max(|value|, the
-// same floor divided by L_sun).
-double relative_error(Integral integral, const SunSetting& sun, const Vec3& x, const Vec3& t) {
+}  // namespace
+
+double lighting_relative_error(LightingIntegral integral, const LightingSun& sun, const Vec3& x,
+                               const Vec3& t) {
   if (integral == Integral::fresnel) {
     return std::fabs(x[0] - t[0]) / std::fmax(std::fabs(1.0 - t[0]), 1e-300);
   }
@@ -203,13 +202,14 @@ double relative_error(Integral integral, const SunSetting& sun, const Vec3& x, c
   }
   return worst;
 }
-// The bound max(tolerance·|t|, tolerance·floor) the reference promises, per channel.
-double tolerance_bound(Integral integral, const SunSetting& sun, double tolerance, double t,
-                       std::size_t c) {
+double lighting_tolerance_bound(LightingIntegral integral, const LightingSun& sun, double tolerance,
+                                double t, std::size_t c) {
   if (integral == Integral::fresnel) return tolerance * std::fabs(1.0 - t);
   if (integral == Integral::sun) return tolerance * std::fmax(std::fabs(t), sun.sun_floor);
   return tolerance * std::fmax(std::fabs(t), sun.sky_floor[c]);
 }
+
+namespace {
 
 // ---- Measurement ----------------------------------------------------------------------------
 
@@ -314,7 +314,8 @@ Map measure(const Sweep& sweep, const SweepSpec& spec, int threads) {
       row.label = order_label(integral, order);
       std::vector<double> errors(n);
       for (std::size_t i = 0; i < n; ++i) {
-        errors[i] = relative_error(integral, sweep.suns[cases[i].sun], values[i], truth[i].value);
+        errors[i] =
+            lighting_relative_error(integral, sweep.suns[cases[i].sun], values[i], truth[i].value);
       }
       set_statistics(row, errors);
       row.seconds = seconds;
@@ -337,7 +338,7 @@ Map measure(const Sweep& sweep, const SweepSpec& spec, int threads) {
       double evaluations = 0.0;
       for (std::size_t i = 0; i < n; ++i) {
         const SunSetting& sun = sweep.suns[cases[i].sun];
-        errors[i] = relative_error(integral, sun, values[i].value, truth[i].value);
+        errors[i] = lighting_relative_error(integral, sun, values[i].value, truth[i].value);
         evaluations += static_cast<double>(values[i].evaluations);
         if (!values[i].converged) ++row.unconverged;
         bool beyond_estimate = false, beyond_tolerance = false;
@@ -348,8 +349,8 @@ Map measure(const Sweep& sweep, const SweepSpec& spec, int threads) {
           if (actual > allowed) beyond_estimate = true;
           row.worst_ratio = std::fmax(
               row.worst_ratio, allowed > 0.0 ? actual / allowed : (actual > 0.0 ? HUGE_VAL : 0.0));
-          if (actual >
-              tolerance_bound(integral, sun, tolerance, truth[i].value[c], c) + truth[i].error[c]) {
+          if (actual > lighting_tolerance_bound(integral, sun, tolerance, truth[i].value[c], c) +
+                           truth[i].error[c]) {
             beyond_tolerance = true;
           }
         }

@@ -88,6 +88,18 @@ struct LightingMap {
   std::vector<double> truth_evaluations = {0, 0, 0};  // mean per integral
 };
 
+// The relative error of `x` against the truth `t`, as the renderer's tolerance reads it: the
+// sky per channel relative to max(|L|, sun.sky_floor) (the largest channel counts), F̄ relative
+// to 1 − F̄ (the sea term is linear in it), the sun's reflectance relative to max(|t|,
+// sun.sun_floor). F̄ and the sun use channel 0.
+double lighting_relative_error(LightingIntegral integral, const LightingSun& sun, const Vec3& x,
+                               const Vec3& t);
+// The absolute error in channel c that a tolerance allows at the truth t: tolerance times the
+// scale lighting_relative_error divides by, so that a value is within the tolerance exactly when
+// every channel's |x − t| is within its bound.
+double lighting_tolerance_bound(LightingIntegral integral, const LightingSun& sun, double tolerance,
+                                double t, std::size_t c);
+
 // Over the sweep: the truths (on `threads` threads), then every fast order and every reference
 // tolerance (timed on one thread).
 LightingMap measure_lighting_map(const LightingSweepSpec& spec, int threads);
