@@ -437,6 +437,14 @@ TEST_CASE("reflected_sun_bound bounds the sun disk's integral; below the toleran
       reflected_sun_reference(sun, kSunAngularRadius, away, flat, calm, {}, 1e-6, 0.5 * bound);
   CHECK(integrated.evaluations > 0);
   CHECK(integrated.value <= bound);
+  // No bound (+∞) where H_S·N ≤ ρ, the equality included: for a sun of radius 0.25 with
+  // H_S·N = 0.25 exactly, and for a point sun (ρ = 0) with H_S·N = 0 (the sun as far below the
+  // surface's plane as the view is above it).
+  const Vec3 view{0.0, 0.5, std::sqrt(0.75)};
+  REQUIRE(flat.normal[1] == 1.0);
+  CHECK(reflected_sun_bound({std::sqrt(1.0 - 0.0625), -0.25, 0.0}, 0.25, view, flat, calm) ==
+        HUGE_VAL);
+  CHECK(reflected_sun_bound({0.0, -0.5, -std::sqrt(0.75)}, 0.0, view, flat, calm) == HUGE_VAL);
 }
 
 TEST_CASE("tightening the tolerance 100x moves no value by more than its error estimate") {
@@ -815,5 +823,66 @@ TEST_CASE("reference geometry: the sun disk's points and its horizon line") {
     double density = 0.0;
     const Vec3 l = sun_disk_direction(sun, radius, axes, x, y, density);
     CHECK(std::fabs(dot(l, f.normal)) < radius * radius);
+  }
+}
+
+TEST_CASE("reference geometry: the sun disk's breakpoints, around the lobe and on the horizon") {
+  using namespace reference_geometry;
+  const auto ascending_within = [](const std::vector<double>& b, double end) {
+    REQUIRE(b.size() >= 2);
+    CHECK(b.front() == -end);
+    CHECK(b.back() == end);
+    for (std::size_t i = 1; i < b.size(); ++i) CHECK(b[i] > b[i - 1]);
+  };
+  const auto contains = [](const std::vector<double>& b, double x) {
+    return std::find(b.begin(), b.end(), x) != b.end();
+  };
+  // The lobe's peak at (x0, y0) = (0.3, 0.2), lobe 0.01: the ends, x0 and x0 ± 0.01·4^j for
+  // j = 0 … 3, all inside [−1, 1] (as θ = asin x); η likewise around η0 = y0/cos θ0.
+  const double x0 = 0.3, y0 = 0.2, lobe = 0.01;
+  const double eta0 = y0 / std::sqrt(1.0 - x0 * x0);
+  // The horizon along x (|w·N| ≥ |u·N|): at each θ the inner rule gets the η where the line
+  // sin θ (u·N) + η cos θ (w·N) = h crosses the chord, in order; the outer rule nothing.
+  const SunDiskBreaks along_x = sun_disk_breaks(x0, y0, lobe, 0.1, 0.2, 0.9);
+  CHECK(along_x.horizon_across_x);
+  ascending_within(along_x.theta, kPi / 2);
+  ascending_within(along_x.eta, 1.0);
+  CHECK(along_x.theta.size() == 11);
+  CHECK(along_x.eta.size() == 11);
+  CHECK(contains(along_x.theta, math::asin(x0)));
+  CHECK(contains(along_x.eta, eta0));
+  for (double d = lobe; d < 2.0; d *= 4.0) {
+    CAPTURE(d);
+    for (const double side : {-1.0, 1.0}) {
+      CHECK(contains(along_x.theta, math::asin(x0 + side * d)));
+      CHECK(contains(along_x.eta, eta0 + side * d));
+    }
+  }
+  int crossed = 0;
+  for (const double theta : {-1.5, -1.0, -0.3, 0.0, 0.2, 0.9, 1.4}) {
+    CAPTURE(theta);
+    const math::SinCos angle = math::sincos(theta);
+    const std::vector<double> b = sun_disk_eta_breaks(along_x, angle);
+    const double eta_h = (0.1 - 0.2 * angle.sin) / (0.9 * angle.cos);
+    ascending_within(b, 1.0);
+    if (std::fabs(eta_h) < 1.0) {
+      ++crossed;
+      REQUIRE(b.size() == along_x.eta.size() + 1);
+      CHECK(contains(b, eta_h));
+      CHECK(std::fabs(angle.sin * 0.2 + eta_h * angle.cos * 0.9 - 0.1) < 1e-16);
+    } else {
+      CHECK(b == along_x.eta);
+    }
+  }
+  CHECK(crossed == 6);  // at θ = −1.5 the line passes outside the disk (η_h = 4.7)
+  // The horizon along y: the outer rule gets θ = asin(h/(u·N)), the inner rule nothing.
+  const SunDiskBreaks along_y = sun_disk_breaks(x0, y0, lobe, 0.3, 0.9, 0.2);
+  CHECK(!along_y.horizon_across_x);
+  ascending_within(along_y.theta, kPi / 2);
+  CHECK(along_y.theta.size() == along_x.theta.size() + 1);
+  CHECK(contains(along_y.theta, math::asin(0.3 / 0.9)));
+  CHECK(along_y.eta == along_x.eta);
+  for (const double theta : {-1.0, 0.0, 0.34, 1.2}) {
+    CHECK(sun_disk_eta_breaks(along_y, math::sincos(theta)) == along_y.eta);
   }
 }

@@ -185,6 +185,47 @@ Vec3 sun_disk_direction(const Vec3& sun, double sun_radius, const std::array<Vec
   return l;
 }
 
+namespace {
+// {lo, centre, hi} and centre ± lobe·4^j, those in [lo, hi], ascending without repeats.
+std::vector<double> breaks_around(double centre, double lo, double hi, double lobe) {
+  std::vector<double> b{lo, centre, hi};
+  for (double d = lobe; d < hi - lo; d *= 4.0) {
+    b.push_back(centre - d);
+    b.push_back(centre + d);
+  }
+  std::sort(b.begin(), b.end());
+  std::vector<double> inside;
+  for (const double x : b) {
+    if (x >= lo && x <= hi && (inside.empty() || x > inside.back())) inside.push_back(x);
+  }
+  return inside;
+}
+}  // namespace
+
+// The lobe's peak at (x0, y0) = (sin θ0, η0 cos θ0); the horizon's θ when the line runs along y.
+SunDiskBreaks sun_disk_breaks(double x0, double y0, double lobe, double horizon, double un,
+                              double wn) {
+  SunDiskBreaks b{{}, {}, horizon, un, wn, std::fabs(wn) >= std::fabs(un)};
+  const double cos_theta0 = std::sqrt(std::fmax(0.0, 1.0 - x0 * x0));
+  const double eta0 = cos_theta0 > 0.0 ? clamp_unit(y0 / cos_theta0) : 0.0;
+  for (const double x : breaks_around(x0, -1.0, 1.0, lobe)) b.theta.push_back(math::asin(x));
+  b.eta = breaks_around(eta0, -1.0, 1.0, lobe);
+  if (!b.horizon_across_x && std::fabs(horizon) < std::fabs(un)) {
+    b.theta.push_back(math::asin(horizon / un));
+    std::sort(b.theta.begin(), b.theta.end());
+  }
+  return b;
+}
+
+// The line at θ: sin θ (u·N) + η cos θ (w·N) = h.
+std::vector<double> sun_disk_eta_breaks(const SunDiskBreaks& b, const math::SinCos& angle) {
+  const double eta_h = (b.horizon - b.un * angle.sin) / (b.wn * angle.cos);
+  if (!b.horizon_across_x || !(std::fabs(eta_h) < 1.0)) return b.eta;
+  std::vector<double> out = b.eta;
+  out.insert(std::upper_bound(out.begin(), out.end(), eta_h), eta_h);
+  return out;
+}
+
 }  // namespace reference_geometry
 
 using namespace reference_geometry;
@@ -347,43 +388,8 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
   // variant with breakpoints across the arc's own axes cost more and was no more accurate on
   // the map's sweep.)
   const double lobe = 2.0 * std::sqrt(std::fmin(s.upwind, s.crosswind)) / radius;
-  const auto around = [lobe](double centre, double lo, double hi) {
-    std::vector<double> b{lo, centre, hi};
-    for (double d = lobe; d < hi - lo; d *= 4.0) {
-      b.push_back(centre - d);
-      b.push_back(centre + d);
-    }
-    std::sort(b.begin(), b.end());
-    std::vector<double> inside;
-    for (const double x : b) {
-      if (x >= lo && x <= hi && (inside.empty() || x > inside.back())) inside.push_back(x);
-    }
-    return inside;
-  };
-  const double cos_theta0 = std::sqrt(std::fmax(0.0, 1.0 - x0 * x0));
-  const double eta0 = cos_theta0 > 0.0 ? clamp_unit(y0 / cos_theta0) : 0.0;
-  std::vector<double> theta_breaks;
-  for (const double x : around(x0, -1.0, 1.0)) theta_breaks.push_back(math::asin(x));
-  const std::vector<double> eta_breaks = around(eta0, -1.0, 1.0);
-  // The surface's horizon L·N = 0 across a setting sun: the BRDF falls to 0 there with a kink.
-  // To first order in ρ_s it is the line x (u·N) + y (w·N) = −(S·N)/ρ_s (curved by O(ρ_s²),
-  // 2e-5 of the disk): a breakpoint of the inner rule at each θ when the line runs along x,
-  // of the outer rule when it runs along y.
-  const double un = dot(u, f.normal);
-  const double wn = dot(w, f.normal);
-  const double horizon = sun_disk_horizon(sun, radius, f);
-  const bool horizon_across_x = std::fabs(wn) >= std::fabs(un);
-  if (!horizon_across_x && std::fabs(horizon) < std::fabs(un)) {
-    theta_breaks.push_back(math::asin(horizon / un));
-    std::sort(theta_breaks.begin(), theta_breaks.end());
-  }
-  const auto inner_breaks = [&](const math::SinCos& angle) {
-    const double eta_h = (horizon - un * angle.sin) / (wn * angle.cos);
-    if (!horizon_across_x || !(std::fabs(eta_h) < 1.0)) return eta_breaks;
-    std::vector<double> b = eta_breaks;
-    b.insert(std::upper_bound(b.begin(), b.end(), eta_h), eta_h);
-    return b;
-  };
+  const SunDiskBreaks breaks = sun_disk_breaks(x0, y0, lobe, sun_disk_horizon(sun, radius, f),
+                                               dot(u, f.normal), dot(w, f.normal));
   // x = sin θ, y = η cos θ maps [−π/2, π/2] × [−1, 1] onto the disk, dx dy = cos²θ dθ dη.
   const CubatureTolerance<1> outer{relative, {absolute}};
   const CubatureTolerance<1> inner = inner_tolerance(outer, kPi, {0.0});
@@ -400,9 +406,9 @@ ScalarEstimate reflected_sun_reference(const Vec3& sun, double radius, const Vec
                            ocean_brdf(l, view, v, f, s, options).brdf_cos;
               return e;
             },
-            inner_breaks(angle), inner);
+            sun_disk_eta_breaks(breaks, angle), inner);
       },
-      theta_breaks, outer);
+      breaks.theta, outer);
   return {r.value[0], r.error[0], r.evaluations, r.converged};
 }
 

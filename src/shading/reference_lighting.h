@@ -112,6 +112,24 @@ std::vector<double> chord_scale_crossings(const SkyFrame& k, double theta_lo, do
 Vec3 sun_disk_direction(const Vec3& sun, double sun_radius, const std::array<Vec3, 2>& axes,
                         double x, double y, double& solid_angle_density);
 double sun_disk_horizon(const Vec3& sun, double sun_radius, const SurfaceFrame& frame);
+// The breakpoints of reflected_sun_reference's rules over the disk, x = sin θ, y = η cos θ
+// (outer rule over θ ∈ [−π/2, π/2], inner over η ∈ [−1, 1]): around the lobe's peak (x0, y0) at
+// distances lobe·4^j in x and in η (a lobe narrower than the disk is never straddled unseen by a
+// Kronrod rule), and on the surface's horizon L·N = 0 of a setting sun, where the BRDF falls to 0
+// with a kink. To first order in ρ_s that is the line x (u·N) + y (w·N) = horizon
+// (sun_disk_horizon; curved by O(ρ_s²), 2e-5 of the disk): a breakpoint of the inner rule at each
+// θ when the line runs along x (|w·N| ≥ |u·N|), of the outer rule when it runs along y.
+struct SunDiskBreaks {
+  std::vector<double> theta;  // ascending, in [−π/2, π/2], the horizon's included
+  std::vector<double> eta;    // ascending, in [−1, 1], the horizon's not (sun_disk_eta_breaks)
+  double horizon, un, wn;     // the line; u·N, w·N
+  bool horizon_across_x;      // |w·N| ≥ |u·N|
+};
+SunDiskBreaks sun_disk_breaks(double x0, double y0, double lobe, double horizon, double un,
+                              double wn);
+// The inner rule's breakpoints at θ (angle = sin θ, cos θ): eta, with the horizon's η where the
+// line crosses the chord at θ inside (−1, 1).
+std::vector<double> sun_disk_eta_breaks(const SunDiskBreaks& b, const math::SinCos& angle);
 }  // namespace reference_geometry
 
 }  // namespace oceanref
