@@ -38,9 +38,19 @@ TEST_CASE("adaptive integration reaches the requested relative accuracy") {
   const QuadratureResult t = integrate([](double x) { return 1.0 / (x * x * x); }, {1.0, HUGE_VAL});
   CHECK(std::fabs(t.value - 0.5) < 1e-12);
   // A narrow peak: ∫ exp(−x²/(2·0.01²)) over [−1, 1] = 0.01·√(2π).
+  int calls = 0;
   const QuadratureResult g = integrate(
-      [](double x) { return std::exp(-0.5 * (x / 0.01) * (x / 0.01)); }, {-1.0, 0.3, 1.0});
+      [&calls](double x) {
+        ++calls;
+        return std::exp(-0.5 * (x / 0.01) * (x / 0.01));
+      },
+      {-1.0, 0.3, 1.0});
   CHECK(std::fabs(g.value - 0.01 * std::sqrt(2.0 * M_PI)) < 1e-12);
+  // evaluations counts the integrand's calls: 15 per Kronrod rule, one rule per piece and two
+  // per split.
+  CHECK(g.evaluations == calls);
+  CHECK(calls % 15 == 0);
+  CHECK(calls > 2 * 15);  // the peak needs splits
 }
 
 TEST_CASE("a divergent integral is reported as not converged") {

@@ -362,6 +362,20 @@ TEST_CASE("extremes: turbidity limits, sun at and below the horizon, grazing dir
   }
   CHECK_THROWS_AS(make_sky(1.5, 0.0, 0.0), std::invalid_argument);
   CHECK_THROWS_AS(make_sky(11.0, 0.0, 0.0), std::invalid_argument);
+  // The sun's angles, each refused alone (the scene checks degrees first; a library caller
+  // passes radians): zenith outside [0, π] or NaN, azimuth not finite. The ends are accepted.
+  for (const double zenith : {-1e-12, std::nextafter(kPi, 4.0), std::nan("")}) {
+    CAPTURE(zenith);
+    CHECK_THROWS_WITH_AS(make_sky(2.5, zenith, 0.0), doctest::Contains("sun zenith angle"),
+                         std::invalid_argument);
+  }
+  for (const double azimuth : {HUGE_VAL, -HUGE_VAL, std::nan("")}) {
+    CAPTURE(azimuth);
+    CHECK_THROWS_WITH_AS(make_sky(2.5, 1.0, azimuth), doctest::Contains("sun azimuth"),
+                         std::invalid_argument);
+  }
+  CHECK_NOTHROW(make_sky(2.5, 0.0, -7.0));
+  CHECK_NOTHROW(make_sky(2.5, kPi, 7.0));
 }
 
 TEST_CASE("below the horizon the sky is its horizon limit, continued smoothly (no jump)") {

@@ -433,6 +433,66 @@ TEST_CASE("study: FFT grids equal direct summation at the nodes; interpolation e
   CHECK(rows == 12);
 }
 
+TEST_CASE("study 5: whitecap footprints against the nodes' J, recomputed block by block") {
+  // The study's folding sea (16 m/s, choppiness −2.5) on the tiny study scene, 32² nodes: J at
+  // every node of cascade 0's tile, then per 4×4 footprint its mean, its variance (two-pass), the
+  // share below ε = 0.5 and the Gaussian model ½ erfc((μ − ε)/√(2σ²)) (Dupuy & Bruneton),
+  // written here with std::erfc. The sums run in another order: agreement to 1e-12.
+  Scene scene = study_scene();
+  scene.waves.resolution = scene.waves.low_resolution = 32;
+  scene.shading.whitecap_threshold = 0.5;
+  const WhitecapFootprints w = study_whitecap_footprints(scene, 1);
+  WaveSettings stormy = scene.waves;
+  stormy.spectrum.wind_speed = 16.0;
+  stormy.choppiness.assign(stormy.sizes.size(), -2.5);
+  const Ocean ocean = realize_ocean(stormy, 1);
+  const std::vector<CascadeFields> fields = synthesize_ocean(ocean, scene.time, 1);
+  const int n = 32;
+  const double size = stormy.sizes[0];
+  std::vector<double> jacobian;
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      jacobian.push_back(combine_from_grids(ocean, fields, x * size / n, y * size / n).jacobian);
+    }
+  }
+  const double eps = 0.5;
+  const auto below = [eps](double j) { return j < eps ? 1.0 : 0.0; };
+  double total_share = 0.0;
+  for (const double j : jacobian) total_share += below(j);
+  total_share /= static_cast<double>(jacobian.size());
+  double difference = 0.0, largest = 0.0;
+  for (int by = 0; by < n; by += 4) {
+    for (int bx = 0; bx < n; bx += 4) {
+      std::vector<double> block;
+      for (int y = by; y < by + 4; ++y) {
+        for (int x = bx; x < bx + 4; ++x) block.push_back(jacobian[std::size_t(y * n + x)]);
+      }
+      double mean = 0.0, variance = 0.0, share = 0.0;
+      for (const double j : block) mean += j;
+      mean /= 16.0;
+      for (const double j : block) {
+        variance += (j - mean) * (j - mean);
+        share += below(j);
+      }
+      variance /= 16.0;
+      share /= 16.0;
+      const double gauss = variance > 0.0
+                               ? 0.5 * std::erfc((mean - eps) / std::sqrt(2.0 * variance))
+                               : (mean < eps ? 1.0 : 0.0);
+      difference += std::fabs(gauss - share);
+      largest = std::max(largest, std::fabs(gauss - share));
+    }
+  }
+  CHECK(w.footprints == 64);
+  // The sea folds in places, not everywhere: the shares and distances are not trivial.
+  CHECK(total_share > 0.0);
+  CHECK(total_share < 0.5);
+  CHECK(w.mean_coverage == doctest::Approx(total_share).epsilon(1e-12));
+  CHECK(w.mean_abs_difference == doctest::Approx(difference / 64.0).epsilon(1e-9));
+  CHECK(w.max_abs_difference == doctest::Approx(largest).epsilon(1e-9));
+  CHECK(largest > 0.0);
+}
+
 TEST_CASE("bench synthesis: the bilinear lookup's errors are |grid - direct| at its 64 points") {
   SynthesisBenchOptions options;
   options.cascades = 2;

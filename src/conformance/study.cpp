@@ -479,41 +479,13 @@ void bench_study_impl(std::ostream& out, const std::string& path, int threads, b
   // 5. Whitecap footprint statistics: the share of samples with det J < ε vs the Gaussian model
   //    ½ erfc((μ − ε)/√(2σ²)) of Dupuy & Bruneton from the footprint's mean and variance of J.
   {
-    WaveSettings stormy = base.waves;  // a sea that folds: 16 m/s, u = −2.5
-    stormy.spectrum.wind_speed = 16.0;
-    stormy.choppiness.assign(stormy.sizes.size(), -2.5);
-    const Ocean ocean = realize_ocean(stormy, threads);
-    const std::vector<CascadeFields> fields = synthesize_ocean(ocean, base.time, threads);
-    const CascadeFields& f0 = fields[0];
-    const double eps = base.shading.whitecap_threshold;
-    double difference = 0.0, largest = 0.0, covered = 0.0;
-    int footprints = 0;
-    const int n = f0.high_resolution;
-    for (int by = 0; by + 4 <= n; by += 4) {
-      for (int bx = 0; bx + 4 <= n; bx += 4) {
-        double mean = 0.0, square = 0.0, indicator = 0.0;
-        for (int y = by; y < by + 4; ++y) {
-          for (int x = bx; x < bx + 4; ++x) {
-            const double j =
-                combine_from_grids(ocean, fields, x * f0.size / n, y * f0.size / n).jacobian;
-            mean += j / 16.0;
-            square += j * j / 16.0;
-            indicator += (j < eps ? 1.0 : 0.0) / 16.0;
-          }
-        }
-        const double gauss = whitecap_coverage(mean, std::max(0.0, square - mean * mean), eps);
-        difference += std::fabs(gauss - indicator);
-        largest = std::max(largest, std::fabs(gauss - indicator));
-        covered += indicator;
-        ++footprints;
-      }
-    }
+    const WhitecapFootprints w = study_whitecap_footprints(base, threads);
     out << "# 5. whitecap coverage over 4x4-node footprints of cascade 0's tile (16 m/s, u = "
            "-2.5): Gaussian "
            "statistics vs the share of nodes with det J < threshold\n"
-        << "mean_coverage," << format_number(covered / footprints) << "\nmean_abs_difference,"
-        << format_number(difference / footprints) << "\nmax_abs_difference,"
-        << format_number(largest) << '\n';
+        << "mean_coverage," << format_number(w.mean_coverage) << "\nmean_abs_difference,"
+        << format_number(w.mean_abs_difference) << "\nmax_abs_difference,"
+        << format_number(w.max_abs_difference) << '\n';
   }
   out << "# 6. interpolation modes vs direct summation\n";
   bench_interpolation(out, path, threads);
@@ -523,6 +495,41 @@ void bench_study_impl(std::ostream& out, const std::string& path, int threads, b
   bench_lighting_impl(out, sweeps.lighting_order);
 }
 }  // namespace
+
+WhitecapFootprints study_whitecap_footprints(const Scene& base, int threads) {
+  WaveSettings stormy = base.waves;  // a sea that folds: 16 m/s, u = −2.5
+  stormy.spectrum.wind_speed = 16.0;
+  stormy.choppiness.assign(stormy.sizes.size(), -2.5);
+  const Ocean ocean = realize_ocean(stormy, threads);
+  const std::vector<CascadeFields> fields = synthesize_ocean(ocean, base.time, threads);
+  const CascadeFields& f0 = fields[0];
+  const double eps = base.shading.whitecap_threshold;
+  double difference = 0.0, covered = 0.0;
+  WhitecapFootprints w;
+  const int n = f0.high_resolution;
+  for (int by = 0; by + 4 <= n; by += 4) {
+    for (int bx = 0; bx + 4 <= n; bx += 4) {
+      double mean = 0.0, square = 0.0, indicator = 0.0;
+      for (int y = by; y < by + 4; ++y) {
+        for (int x = bx; x < bx + 4; ++x) {
+          const double j =
+              combine_from_grids(ocean, fields, x * f0.size / n, y * f0.size / n).jacobian;
+          mean += j / 16.0;
+          square += j * j / 16.0;
+          indicator += (j < eps ? 1.0 : 0.0) / 16.0;
+        }
+      }
+      const double gauss = whitecap_coverage(mean, std::max(0.0, square - mean * mean), eps);
+      difference += std::fabs(gauss - indicator);
+      w.max_abs_difference = std::max(w.max_abs_difference, std::fabs(gauss - indicator));
+      covered += indicator;
+      ++w.footprints;
+    }
+  }
+  w.mean_coverage = covered / w.footprints;
+  w.mean_abs_difference = difference / w.footprints;
+  return w;
+}
 
 void bench_synthesis(std::ostream& out, const SynthesisBenchOptions& options) {
   bench_synthesis_impl(out, options);

@@ -73,6 +73,19 @@ struct FftVsDirect {
 };
 FftVsDirect study_fft_vs_direct(const Scene& scene, int threads);
 
+// Study 5: a sea that folds (the scene's waves at 16 m/s, choppiness −2.5 on every cascade), over
+// the 4×4-node footprints of cascade 0's tile (n/4 × n/4 of them, J = det of the Jacobian of all
+// cascades combined at the nodes): the share of nodes with J < the scene's whitecap threshold ε
+// against the Gaussian model ½ erfc((μ − ε)/√(2σ²)) of Dupuy & Bruneton from the footprint's
+// mean μ and variance σ² of J.
+struct WhitecapFootprints {
+  int footprints = 0;
+  double mean_coverage = 0.0;        // the share of all nodes with J < ε
+  double mean_abs_difference = 0.0;  // |Gaussian − share|, mean over the footprints
+  double max_abs_difference = 0.0;   // and largest
+};
+WhitecapFootprints study_whitecap_footprints(const Scene& base, int threads);
+
 // The study's sweeps: each knob's settings ascend toward its most exact setting (the finest
 // grid, the most samples per pixel), against which each is measured. The full sweep takes
 // minutes; `quick` is the same tables on small sizes (a test of the study, not a measurement).

@@ -93,8 +93,12 @@ Sky make_sky(double turbidity, double sun_zenith, double sun_azimuth) {
     throw std::invalid_argument("turbidity must be in [2, 10] (Preetham's fitted range), got " +
                                 std::to_string(turbidity));
   }
-  if (!(sun_zenith >= 0.0 && sun_zenith <= kPi) || !std::isfinite(sun_azimuth)) {
-    throw std::invalid_argument("sun zenith angle must be in [0, 180] degrees");
+  if (!(sun_zenith >= 0.0 && sun_zenith <= kPi)) {
+    throw std::invalid_argument("sun zenith angle must be in [0, pi] rad ([0, 180] degrees), got " +
+                                std::to_string(sun_zenith));
+  }
+  if (!std::isfinite(sun_azimuth)) {
+    throw std::invalid_argument("sun azimuth must be finite, got " + std::to_string(sun_azimuth));
   }
   Sky s{};
   s.turbidity = turbidity;
