@@ -509,4 +509,27 @@ TEST_CASE("surface tracer: where Newton's method fails, the triangle's hit is ke
   }
   CHECK(lower > 5);
   CHECK(upper > 5);
+  // A tilted plane y = x/2 (derivatives again given as zero) and patches as large as the cells
+  // (angular tolerance 10): an oblique ray meets the plane 5e-13 of a cell's width outside the
+  // domain's edge x = 0, inside the triangle test's slack (1e-12), after passing through the
+  // first cell's box. Its weight u = −5e-13 is clamped to 0: the unrefined hit lies on the edge,
+  // x0 = (0, z), not outside the surface.
+  const auto tilted = [](const glm::dvec2& x0) {
+    return SurfacePoint{{x0.x, 0.5 * x0.x, x0.y}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  };
+  const OwnedSurface t = make_surface(5, 4, 6.0, 6.0, tilted, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0});
+  SurfaceTraceSettings coarse;
+  coarse.angular_tolerance = 10.0;
+  const glm::dvec3 direction = glm::normalize(glm::dvec3{1.0, 0.25, 0.0});
+  coarse.forward = direction;
+  for (const double z : {0.3, 1.0, 3.7}) {
+    CAPTURE(z);
+    const glm::dvec3 target{-0.75e-12, -0.375e-12, z};
+    const SurfaceHit edge =
+        trace_surface(t.view, t.tree, coarse, target - 3.0 * direction, direction);
+    REQUIRE(edge.hit);
+    CHECK_FALSE(edge.refined);
+    CHECK(edge.x0.x == 0.0);
+    CHECK(edge.x0.y == doctest::Approx(z).epsilon(1e-12));
+  }
 }
