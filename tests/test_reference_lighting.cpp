@@ -885,4 +885,12 @@ TEST_CASE("reference geometry: the sun disk's breakpoints, around the lobe and o
   for (const double theta : {-1.0, 0.0, 0.34, 1.2}) {
     CHECK(sun_disk_eta_breaks(along_y, math::sincos(theta)) == along_y.eta);
   }
+  // A peak on the disk's rim (the mirror direction outside the disk: r0 is clamped to 1), at
+  // x0 = 1 and at η0 = −1: each end is a breakpoint once, not twice.
+  const SunDiskBreaks rim = sun_disk_breaks(1.0, 0.0, 0.5, 2.0, 0.2, 0.9);
+  ascending_within(rim.theta, kPi / 2);
+  ascending_within(rim.eta, 1.0);
+  const SunDiskBreaks rim_eta = sun_disk_breaks(0.0, -1.0, 0.5, 2.0, 0.2, 0.9);
+  ascending_within(rim_eta.eta, 1.0);
+  CHECK(rim_eta.eta == std::vector<double>{-1.0, -0.5, 1.0});  // −1 ± 0.5 and the ends
 }

@@ -476,8 +476,7 @@ void bench_study_impl(std::ostream& out, const std::string& path, int threads, b
           << ',' << format_number(t) << '\n';
     }
   }
-  // 5. Whitecap footprint statistics: the share of samples with det J < ε vs the Gaussian model
-  //    ½ erfc((μ − ε)/√(2σ²)) of Dupuy & Bruneton from the footprint's mean and variance of J.
+  // 5. Whitecap footprint statistics (study_whitecap_footprints).
   {
     const WhitecapFootprints w = study_whitecap_footprints(base, threads);
     out << "# 5. whitecap coverage over 4x4-node footprints of cascade 0's tile (16 m/s, u = "
