@@ -15,6 +15,7 @@
 #include "scene/scene.h"
 #include "waves/footprint_filter.h"
 #include "waves/ocean.h"
+#include "waves/surface.h"
 
 using namespace oceanref;
 
@@ -161,4 +162,36 @@ TEST_CASE(
   CHECK(refinement_item(R"(, "pixel_tolerance": 0.01, "max_samples_per_pixel": 36)") ==
         3 * 6 * 6 * per_sample);
   CHECK(refinement_item("") == 0.0);  // fixed samples: no refinement
+}
+
+TEST_CASE("memory: a foam history holds the deformation's fields, as its estimate counts") {
+  // The stormy golden scene with steady foam: each earlier frame keeps D_x and D_z (surface
+  // normals), or those and the N_h ∂D fields (high_resolution); the estimate is exactly that.
+  for (const ShadingNormals normals : {ShadingNormals::surface, ShadingNormals::high_resolution}) {
+    Scene scene = load_scene(std::string(OCEANREF_SOURCE_DIR) +
+                             "/reference/scenes/golden/jonswap_storm_foam_steady.json");
+    scene.shading.normals = normals;
+    scene.foam.steps = 3;
+    REQUIRE(scene.shading.whitecaps);
+    const Ocean ocean = realize_ocean(scene.waves, 1);
+    const RenderFrame frame =
+        prepare_frame(scene_render_job(scene, ocean, 1), {0.01, 0.01}, nullptr);
+    REQUIRE(frame.foam_history.size() == 3);
+    double held = 0.0;
+    for (const FrameFields& f : frame.foam_history) {
+      for (const CascadeFields& c : f.grids) {
+        for (const std::vector<double>& v : c.values) {
+          held += static_cast<double>(v.capacity() * sizeof(double));
+        }
+      }
+    }
+    CHECK(held == foam_history_bytes(scene.waves, normals, 3));
+    int items = 0;
+    for (const MemoryItem& i : render_memory_estimate(scene, {}).items) {
+      if (i.what.rfind("the accumulated foam", 0) != 0) continue;
+      CHECK(i.bytes == held);
+      ++items;
+    }
+    CHECK(items == 1);
+  }
 }

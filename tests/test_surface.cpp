@@ -4,7 +4,9 @@
 // brute-force mean over positions, and Hs of the combined footprint height.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
@@ -514,4 +516,86 @@ TEST_CASE("shading.normals: scene key, validation, and it changes the image") {
   }
   CHECK(images[0] != images[1]);
   CHECK(sigma2[0].upwind > sigma2[1].upwind);  // fewer bands shaded: more left to the BRDF
+}
+
+namespace {
+// Bitwise equality of doubles (test_support.h's same_bits compares floats).
+bool same_double_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+}  // namespace
+
+TEST_CASE("deformation_at: the deformation and det J of combine_shading_at, bit for bit") {
+  // A sample's foam history reads only the deformation of earlier frames, with the grids'
+  // stencils kept from the first frame and η not read (and released from the history). Every
+  // synthesis (one exemplar point, a tiling's several, the noise blend), both normals, both grid
+  // interpolations and the direct sum, at 60 points × 3 frames read with one FrameStencils.
+  const Scene scene = default_scene();
+  for (const char* synthesis : {"periodic", "tiling_and_blending", "noise_blended"}) {
+    WaveSettings waves = scene.waves;
+    if (std::string(synthesis) == "tiling_and_blending") {
+      waves = load_scene(std::string(OCEANREF_SOURCE_DIR) +
+                         "/reference/scenes/golden/lutz_tiling_and_blending.json")
+                  .waves;
+    } else if (std::string(synthesis) == "noise_blended") {
+      waves = load_scene(std::string(OCEANREF_SOURCE_DIR) +
+                         "/reference/scenes/golden/lutz_noise_blended.json")
+                  .waves;
+    }
+    const Ocean ocean = realize_ocean(waves, 2);
+    std::vector<std::vector<CascadeFields>> frames;
+    std::vector<std::vector<EvolvedCascade>> evolved;
+    for (const double t : {0.0, -0.25, -0.5}) {
+      frames.push_back(synthesize_ocean(ocean, t, 2));
+      evolved.push_back(evolve_ocean(ocean, t));
+    }
+    for (const ShadingNormals normals :
+         {ShadingNormals::surface, ShadingNormals::high_resolution}) {
+      // The history as the renderer keeps it: only the deformation's fields.
+      std::vector<std::vector<CascadeFields>> kept = frames;
+      const std::array<bool, kFieldCount> read = deformation_fields(normals);
+      for (auto& frame : kept) {
+        for (CascadeFields& c : frame) {
+          for (std::size_t q = 0; q < read.size(); ++q) {
+            if (!read[q]) c.values[q].clear();
+          }
+        }
+      }
+      for (const Interpolation mode :
+           {Interpolation::bilinear, Interpolation::bicubic, Interpolation::direct}) {
+        CAPTURE(synthesis);
+        CAPTURE(static_cast<int>(normals));
+        CAPTURE(static_cast<int>(mode));
+        std::size_t points_read = 0;
+        for (const auto& q : r2_points(60, -60.0, 5.0, 120.0, 150.0)) {
+          FrameStencils stencils;
+          for (std::size_t f = 0; f < frames.size(); ++f) {
+            const PointFields p =
+                combine_shading_at(ocean, frames[f], evolved[f], q[0], q[1], mode, normals);
+            const SurfaceDeformation d =
+                deformation_at(ocean, kept[f], evolved[f], q[0], q[1], mode, normals, stencils);
+            CHECK(same_double_bits(d.ddx_dx, p.raw[static_cast<std::size_t>(Field::ddx_dx)]));
+            CHECK(same_double_bits(d.ddx_dz, p.raw[static_cast<std::size_t>(Field::ddx_dz)]));
+            CHECK(same_double_bits(d.ddz_dz, p.raw[static_cast<std::size_t>(Field::ddz_dz)]));
+            CHECK(same_double_bits(d.ddz_dx, p.ddz_dx));
+            CHECK(same_double_bits(d.jacobian, p.jacobian));
+          }
+          points_read = std::max(points_read, stencils.points.size());
+          if (mode != Interpolation::direct) {
+            // One set of stencils per exemplar point, whatever the number of frames.
+            CHECK(stencils.low.size() == stencils.points.size() * ocean.cascades.size());
+            CHECK(stencils.high.size() ==
+                  (normals == ShadingNormals::high_resolution ? stencils.low.size() : 0));
+          }
+        }
+        if (mode == Interpolation::direct) {
+          CHECK(points_read == 0);
+        } else if (std::string(synthesis) == "tiling_and_blending") {
+          CHECK(points_read >= 2);  // a point between tiles reads several exemplar points
+        } else {
+          CHECK(points_read == 1);
+        }
+      }
+    }
+  }
 }

@@ -424,8 +424,11 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
        {"EXR channels" + image,
         pixels * channel_count(options.aov, adaptive(scene)) * sizeof(float)},
        {"error histograms (lighting, pixel)", 2 * kHistogramBytes},
-       {"the accumulated foam's earlier instants (waves.foam.steps x the wave grids)",
-        scene.shading.whitecaps ? scene.foam.steps * wave_grid_bytes(scene.waves) : 0.0},
+       {"the accumulated foam's earlier instants (waves.foam.steps x the deformation's fields)",
+        !scene.shading.whitecaps ? 0.0
+        : scene.shading.interpolation == Interpolation::direct  // h(k, t): within the grids'
+            ? scene.foam.steps * wave_grid_bytes(scene.waves)
+            : foam_history_bytes(scene.waves, scene.shading.normals, scene.foam.steps)},
        {"per-sample radiance (--samples: " + area + " x render.samples_per_pixel)",
         options.keep_samples ? samples * kSampleBytes : 0.0},
        {"adaptive refinement (render.max_samples_per_pixel per thread)",

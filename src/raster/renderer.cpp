@@ -678,20 +678,22 @@ double foam_coverage_at(const RenderFrame& frame, const PointFields& fields, dou
                         const JacobianMoments& residual) {
   const RenderJob& job = frame.job;
   const ShadingSettings& sh = job.shading;
-  const auto coverage = [&](const PointFields& f) {
-    return whitecap_coverage(
-        f.jacobian,
-        jacobian_variance(read_deformation(f), residual, frame.wind_cos, frame.wind_sin),
-        sh.whitecap_threshold);
+  const auto coverage = [&](double jacobian, const Deformation& a) {
+    return whitecap_coverage(jacobian,
+                             jacobian_variance(a, residual, frame.wind_cos, frame.wind_sin),
+                             sh.whitecap_threshold);
   };
-  if (frame.foam_history.empty()) return coverage(fields);
+  const double now = coverage(fields.jacobian, read_deformation(fields));
+  if (frame.foam_history.empty()) return now;
   double foam = 0.0;
+  FrameStencils stencils;  // the earlier frames' grids share their sizes: located once
   for (const FrameFields& earlier : frame.foam_history) {
-    const PointFields f = combine_shading_at(*job.ocean, earlier.grids, earlier.evolved, x, z,
-                                             sh.interpolation, sh.normals);
-    foam = accumulated_foam(foam, coverage(f), job.foam.decay, job.foam.time_step);
+    const SurfaceDeformation d = deformation_at(*job.ocean, earlier.grids, earlier.evolved, x, z,
+                                                sh.interpolation, sh.normals, stencils);
+    const Deformation a{1.0 + d.ddx_dx, d.ddx_dz, d.ddz_dx, 1.0 + d.ddz_dz};
+    foam = accumulated_foam(foam, coverage(d.jacobian, a), job.foam.decay, job.foam.time_step);
   }
-  return accumulated_foam(foam, coverage(fields), job.foam.decay, job.foam.time_step);
+  return accumulated_foam(foam, now, job.foam.decay, job.foam.time_step);
 }
 
 RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
@@ -715,6 +717,14 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
       RenderJob earlier = job;
       earlier.time = job.time - j * job.foam.time_step;
       frame.foam_history.push_back(frame_fields(earlier));
+      // Only the deformation is read from earlier frames (foam_coverage_at): the other fields
+      // are released, so the history costs 2 of the 8 fields (surface normals).
+      const std::array<bool, kFieldCount> kept = deformation_fields(job.shading.normals);
+      for (CascadeFields& c : frame.foam_history.back().grids) {
+        for (std::size_t q = 0; q < kept.size(); ++q) {
+          if (!kept[q]) std::vector<double>().swap(c.values[q]);
+        }
+      }
     }
   }
   frame.filter = frame_filter(job);

@@ -87,6 +87,119 @@ PointFields combine_shading_at(const Ocean& ocean, const std::vector<CascadeFiel
   return combine_at(ocean, fields, evolved, x, z, mode);
 }
 
+std::array<bool, kFieldCount> deformation_fields(ShadingNormals normals) {
+  std::array<bool, kFieldCount> read{};
+  read[static_cast<std::size_t>(Field::displacement_x)] = true;
+  read[static_cast<std::size_t>(Field::displacement_z)] = true;
+  if (normals == ShadingNormals::high_resolution) {
+    for (const Field q : {Field::ddx_dx, Field::ddz_dz, Field::ddx_dz}) {
+      read[static_cast<std::size_t>(q)] = true;
+    }
+  }
+  return read;
+}
+
+double foam_history_bytes(const WaveSettings& settings, ShadingNormals normals, int steps) {
+  if (settings.model == WaveModel::gerstner) return 0.0;  // no grids (as wave_grid_bytes)
+  const double low = static_cast<double>(settings.low_resolution) * settings.low_resolution;
+  const double high = static_cast<double>(settings.resolution) * settings.resolution;
+  const std::array<bool, kFieldCount> kept = deformation_fields(normals);
+  double per_cascade = 0.0;
+  for (std::size_t q = 0; q < kept.size(); ++q) {
+    if (kept[q]) per_cascade += (is_low_resolution_field(Field(q)) ? low : high) * sizeof(double);
+  }
+  return static_cast<double>(steps) * static_cast<double>(settings.sizes.size()) * per_cascade;
+}
+
+namespace {
+// The stencils of exemplar point (x, z) for every cascade: those kept from an earlier frame, or
+// made (as cascade_surface_from_grids and cascade_from_grids make them) and kept. Returns the
+// point's index.
+std::size_t point_stencils(const std::vector<CascadeFields>& fields, double x, double z,
+                           Interpolation mode, ShadingNormals normals, FrameStencils& s) {
+  for (std::size_t p = 0; p < s.points.size(); ++p) {
+    if (s.points[p][0] == x && s.points[p][1] == z) return p;
+  }
+  const Interpolation read =
+      mode == Interpolation::bicubic ? Interpolation::bicubic : Interpolation::bilinear;
+  for (const CascadeFields& f : fields) {
+    const GridStencil low = grid_stencil(f.low_resolution, f.size, x, z, read);
+    s.low.push_back(low);
+    if (normals == ShadingNormals::high_resolution) {
+      s.high.push_back(f.high_resolution == f.low_resolution
+                           ? low
+                           : grid_stencil(f.high_resolution, f.size, x, z, read));
+    }
+  }
+  s.points.push_back({x, z});
+  return s.points.size() - 1;
+}
+
+// The exemplar's sums of the deformation's fields at one of the stencils' points, cascade by
+// cascade as exemplar_surface_sum (surface) and exemplar_sum (high_resolution) sum them.
+PointFields exemplar_deformation_sum(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                                     const FrameStencils& s, std::size_t point,
+                                     ShadingNormals normals) {
+  const auto index = [](Field q) { return static_cast<std::size_t>(q); };
+  PointFields sum;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const CascadeFields& f = fields[i];
+    const GridStencil& low = s.low[point * fields.size() + i];
+    const double u = ocean.cascades[i].choppiness;
+    if (normals == ShadingNormals::surface) {
+      const GridSample dx = read_gradient(f.values[index(Field::displacement_x)], low);
+      const GridSample dz = read_gradient(f.values[index(Field::displacement_z)], low);
+      CascadeSurface c;
+      c.raw[index(Field::displacement_x)] = dx.value;
+      c.raw[index(Field::displacement_z)] = dz.value;
+      c.raw[index(Field::ddx_dx)] = dx.d_dx;
+      c.raw[index(Field::ddz_dz)] = dz.d_dz;
+      c.raw[index(Field::ddx_dz)] = dx.d_dz;
+      c.ddz_dx = dz.d_dx;
+      add_cascade_surface(sum, c, u);
+    } else {
+      const GridStencil& high = s.high[point * fields.size() + i];
+      std::array<double, kFieldCount> raw{};
+      const std::array<bool, kFieldCount> read = deformation_fields(normals);
+      for (std::size_t q = 0; q < raw.size(); ++q) {
+        if (read[q])
+          raw[q] = read_value(f.values[q], is_low_resolution_field(Field(q)) ? low : high);
+      }
+      add_cascade(sum, raw, u);
+    }
+  }
+  return sum;
+}
+}  // namespace
+
+SurfaceDeformation deformation_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
+                                  const std::vector<EvolvedCascade>& evolved, double x, double z,
+                                  Interpolation mode, ShadingNormals normals,
+                                  FrameStencils& stencils) {
+  const auto index = [](Field q) { return static_cast<std::size_t>(q); };
+  const auto deformation = [&](const PointFields& p, double jacobian) {
+    return SurfaceDeformation{p.raw[index(Field::ddx_dx)], p.raw[index(Field::ddx_dz)], p.ddz_dx,
+                              p.raw[index(Field::ddz_dz)], jacobian};
+  };
+  if (mode == Interpolation::direct || ocean.gerstner) {  // no grids to locate the point on
+    const PointFields p = combine_shading_at(ocean, fields, evolved, x, z, mode, normals);
+    return deformation(p, p.jacobian);
+  }
+  OCEANREF_EXPECTS(fields.size() == ocean.cascades.size(), "one field set per cascade");
+  const PointFields sum = synthesized_sum(ocean, x, z, [&](double ex, double ez) {
+    return exemplar_deformation_sum(
+        ocean, fields, stencils, point_stencils(fields, ex, ez, mode, normals, stencils), normals);
+  });
+  // As finish_surface_combination and finish_combination compute det J.
+  const double jacobian =
+      normals == ShadingNormals::surface
+          ? jacobian_determinant(sum.raw[index(Field::ddx_dx)], sum.raw[index(Field::ddz_dz)],
+                                 sum.raw[index(Field::ddx_dz)], sum.ddz_dx)
+          : jacobian_determinant(sum.raw[index(Field::ddx_dx)], sum.raw[index(Field::ddz_dz)],
+                                 sum.raw[index(Field::ddx_dz)]);
+  return deformation(sum, jacobian);
+}
+
 namespace {
 // The exemplar's offset q = (Σ u_i D_x,i, Σ η_i, Σ u_i D_z,i) at (x, z) from the grids, summed as
 // add_cascade and add_cascade_surface do: cascade by cascade, from 0.
