@@ -5,7 +5,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -356,4 +358,71 @@ TEST_CASE("foam: the renderer's accumulated whitecaps equal what `fields` accumu
   instant.foam_history.clear();
   CHECK(foam_coverage_at(frame, f, 3.0, 4.0, job.unresolved_jacobian) >=
         foam_coverage_at(instant, f, 3.0, 4.0, job.unresolved_jacobian));
+}
+
+TEST_CASE("foam: the history read from the newest back gives the forward recursion's bits") {
+  // accumulated_foam_of_history against accumulated_foam run forward over every instant, on
+  // histories of every kind — no foam, a foam patch at every age, coverages at ½ (where the
+  // decay changes), 0 and 1, NaN, long runs — and on histories made to sit at the stopping
+  // rule's edge (the older foam decayed to exactly `current` ± an ulp or two).
+  const double decay = 0.1, dt = 0.25;  // the default scene's: 42 steady steps
+  const int steps = steady_foam_steps(decay, dt);
+  REQUIRE(steps == 42);
+  const auto before_now = [&](const std::vector<double>& w) {
+    double foam = 0.0;  // w[age − 1], oldest last
+    for (auto it = w.rbegin(); it != w.rend(); ++it) {
+      foam = accumulated_foam(foam, *it, decay, dt);
+    }
+    return foam;
+  };
+  const auto forward = [&](const std::vector<double>& w, double current) {
+    return accumulated_foam(before_now(w), current, decay, dt);
+  };
+  const auto history = [&](const std::vector<double>& w, double current, int& reads) {
+    reads = 0;
+    return accumulated_foam_of_history(static_cast<int>(w.size()), current, decay, dt,
+                                       [&](int age) {
+                                         ++reads;
+                                         return w[static_cast<std::size_t>(age - 1)];
+                                       });
+  };
+  std::mt19937_64 draw(7);
+  const auto uniform = [&] { return static_cast<double>(draw() >> 11) * 0x1p-53; };
+  int reads = 0;
+  // A sea without whitecaps: after the newest 19 instants (decays 19 · 0.05) an older one can
+  // leave at most 1 − 0.95 = 0.05, which now's decay 0.05 takes to 0 < current; the older 23
+  // are not read.
+  const std::vector<double> calm(42, 1e-7);
+  CHECK(history(calm, 2e-7, reads) == forward(calm, 2e-7));
+  CHECK(reads == 19);
+  int compared = 0, skipped = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::vector<double> w(static_cast<std::size_t>(steps));
+    const int kind = trial % 5;
+    for (double& x : w) {
+      x = kind == 0   ? 1e-6 * uniform()
+          : kind == 1 ? uniform()
+          : kind == 2 ? std::vector<double>{0.0, 0.5, 1.0, 0.25}[draw() % 4]
+          : kind == 3 ? (draw() % 7 == 0 ? std::nan("") : 0.01 * uniform())
+                      : 1e-3 * uniform();
+    }
+    // A patch of foam somewhere in most histories.
+    if (kind >= 3) w[draw() % w.size()] = kind == 4 ? 1.0 : 0.5 + 0.5 * uniform();
+    double current = kind == 2 ? 0.0 : 0.1 * uniform();
+    if (trial % 10 == 9) {
+      // At the edge: current = the foam the history leaves before now, decayed, ± 0–2 ulps.
+      current = std::fmax(0.0, before_now(w) - decay * dt / 0.5);
+      for (int u = 0; u < static_cast<int>(draw() % 3); ++u) {
+        current = std::nextafter(current, draw() % 2 ? 1.0 : 0.0);
+      }
+    }
+    const double expected = forward(w, current);
+    const double got = history(w, current, reads);
+    CHECK(std::memcmp(&got, &expected, sizeof got) == 0);
+    ++compared;
+    skipped += reads < steps ? 1 : 0;
+  }
+  CHECK(compared == 20000);
+  MESSAGE("histories that stopped early: " << skipped << " of " << compared);
+  CHECK(skipped > 4000);  // the small-coverage kinds stop early; the rest may not
 }

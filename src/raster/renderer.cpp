@@ -685,15 +685,16 @@ double foam_coverage_at(const RenderFrame& frame, const PointFields& fields, dou
   };
   const double now = coverage(fields.jacobian, read_deformation(fields));
   if (frame.foam_history.empty()) return now;
-  double foam = 0.0;
   FrameStencils stencils;  // the earlier frames' grids share their sizes: located once
-  for (const FrameFields& earlier : frame.foam_history) {
+  const auto earlier_coverage = [&](int age) {
+    const FrameFields& earlier =
+        frame.foam_history[frame.foam_history.size() - static_cast<std::size_t>(age)];
     const SurfaceDeformation d = deformation_at(*job.ocean, earlier.grids, earlier.evolved, x, z,
                                                 sh.interpolation, sh.normals, stencils);
-    const Deformation a{1.0 + d.ddx_dx, d.ddx_dz, d.ddz_dx, 1.0 + d.ddz_dz};
-    foam = accumulated_foam(foam, coverage(d.jacobian, a), job.foam.decay, job.foam.time_step);
-  }
-  return accumulated_foam(foam, now, job.foam.decay, job.foam.time_step);
+    return coverage(d.jacobian, Deformation{1.0 + d.ddx_dx, d.ddx_dz, d.ddz_dx, 1.0 + d.ddz_dz});
+  };
+  return accumulated_foam_of_history(static_cast<int>(frame.foam_history.size()), now,
+                                     job.foam.decay, job.foam.time_step, earlier_coverage);
 }
 
 RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <string_view>
 #include <vector>
@@ -165,5 +166,37 @@ std::array<double, 3> displaced_surface_normal(double eta_x, double eta_z, doubl
 // Foam of a sequence (Vincevičius listing 2.4): accumulation = last − decay·Δt/max(current, ½),
 // foam = max(accumulation, current); `current` is the indicator (1 where det J < 0).
 double accumulated_foam(double last, double current, double decay, double time_step);
+// accumulated_foam from 0 over the `steps` instants before now (oldest first) and then now's
+// `current`, with `coverage(age)` the value of the instant `age` steps back (1 … steps), each
+// in [0, 1] (a coverage or indicator; NaN counts as none, as in accumulated_foam). The instants
+// are read from the newest back: what those not yet read can add to the foam is at most
+// 1 − (the decays Σ decay·Δt/max(W, ½) of those read), so once that and the ones read, each
+// decayed by the later ones, fall below `current` by more than any rounding, the older instants
+// cannot reach the result, which is `current`, and they are not read (in a steady window most
+// of a sea without whitecaps reads about half of them). Otherwise the recursion runs forward
+// over all of them. The same bits as the forward recursion over every instant in either case.
+template <class Coverage>
+double accumulated_foam_of_history(int steps, double current, double decay, double time_step,
+                                   const Coverage& coverage) {
+  // Rounding: each step of the recursion and of the bounds below is exact to ~2^-52 of values
+  // ≤ 1, so 1e-9 covers any number of steps a scene allows (waves.foam.steps ≤ 10⁴).
+  constexpr double kMargin = 1e-9;
+  const double now_decay = decay * time_step / std::fmax(current, 0.5);
+  std::vector<double> read;  // newest first
+  double later = 0.0;        // Σ of the decays of the instants read
+  double bound = 0.0;        // the largest W_j decayed by the instants after it (≥ 0: foam ≥ 0)
+  for (int age = 1; age <= steps; ++age) {
+    const double w = coverage(age);
+    read.push_back(w);
+    bound = std::fmax(bound, w - later);
+    later += decay * time_step / std::fmax(w, 0.5);
+    if (std::fmax(bound, 1.0 - later) - now_decay + kMargin < current) return current;
+  }
+  double foam = 0.0;
+  for (auto w = read.rbegin(); w != read.rend(); ++w) {
+    foam = accumulated_foam(foam, *w, decay, time_step);
+  }
+  return accumulated_foam(foam, current, decay, time_step);
+}
 
 }  // namespace oceanref
