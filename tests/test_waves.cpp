@@ -537,3 +537,63 @@ TEST_CASE("finish_combination: foam is 1 where det J < 0 only, not on the fold i
     CHECK(p.foam == foam);
   }
 }
+
+TEST_CASE("synthesis with a field mask: the wanted fields' bits, partners only, fewer transforms") {
+  // A foam history synthesizes only the deformation's fields. Both resolutions differing (the
+  // default scene: N_h 256, N_l 128) and equal; every single field wanted, and the history's
+  // D_x, D_z: each computed field equals the full synthesis bit for bit, a field is computed
+  // only when it or its transform's partner is wanted, and the transforms are counted.
+  const Scene scene =
+      load_scene(std::string(OCEANREF_SOURCE_DIR) + "/reference/scenes/default.json");
+  for (const bool multi_resolution : {true, false}) {
+    WaveSettings waves = scene.waves;
+    if (!multi_resolution) waves.low_resolution = waves.resolution;
+    const Ocean ocean = realize_ocean(waves, 2);
+    const CascadeSpectra& c = ocean.cascades[1];
+    const CascadeFields all = synthesize_cascade(c.low, c.high, 0.7, 2);
+    // The transforms' pairs as synthesize_cascade makes them.
+    const std::vector<std::vector<Field>> pairs =
+        multi_resolution
+            ? std::vector<std::vector<Field>>{{Field::height, Field::displacement_x},
+                                              {Field::displacement_z},
+                                              {Field::slope_x, Field::slope_z},
+                                              {Field::ddx_dx, Field::ddz_dz},
+                                              {Field::ddx_dz}}
+            : std::vector<std::vector<Field>>{{Field::height, Field::ddx_dz},
+                                              {Field::slope_x, Field::slope_z},
+                                              {Field::displacement_x, Field::displacement_z},
+                                              {Field::ddx_dx, Field::ddz_dz}};
+    CHECK(all.transforms == static_cast<int>(pairs.size()));
+    std::vector<FieldMask> masks;
+    for (int q = 0; q < kFieldCount; ++q) {
+      FieldMask one{};
+      one[static_cast<std::size_t>(q)] = true;
+      masks.push_back(one);
+    }
+    FieldMask history{};
+    history[static_cast<std::size_t>(Field::displacement_x)] = true;
+    history[static_cast<std::size_t>(Field::displacement_z)] = true;
+    masks.push_back(history);
+    for (const FieldMask& wanted : masks) {
+      CascadeFields some = all;  // reused storage: what is not computed must be emptied
+      SynthesisWorkspace work;
+      synthesize_cascade(c.low, c.high, 0.7, 2, some, work, inverse_fft_2d, nullptr, wanted);
+      int transforms = 0;
+      for (const std::vector<Field>& pair : pairs) {
+        bool computed = false;
+        for (const Field q : pair) computed = computed || wanted[static_cast<std::size_t>(q)];
+        transforms += computed ? 1 : 0;
+        for (const Field q : pair) {
+          const std::size_t i = static_cast<std::size_t>(q);
+          CAPTURE(i);
+          if (computed) {
+            CHECK(testing::same_bits(some.values[i], all.values[i]));
+          } else {
+            CHECK(some.values[i].empty());
+          }
+        }
+      }
+      CHECK(some.transforms == transforms);
+    }
+  }
+}

@@ -34,12 +34,12 @@ Vec3 to_vec3(const glm::dvec3& v) {
 
 using Geometry = FrameGeometry;
 
-FrameFields frame_fields(const RenderJob& job) {
+FrameFields frame_fields(const RenderJob& job, const FieldMask& wanted = kAllFields) {
   FrameFields f;
   if (job.shading.interpolation == Interpolation::direct) {
     f.evolved = evolve_ocean(*job.ocean, job.time);
   } else {
-    f.grids = synthesize_ocean(*job.ocean, job.time, job.threads);
+    f.grids = synthesize_ocean(*job.ocean, job.time, job.threads, wanted);
   }
   return f;
 }
@@ -717,10 +717,11 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
     for (int j = job.foam.steps; j >= 1; --j) {
       RenderJob earlier = job;
       earlier.time = job.time - j * job.foam.time_step;
-      frame.foam_history.push_back(frame_fields(earlier));
-      // Only the deformation is read from earlier frames (foam_coverage_at): the other fields
-      // are released, so the history costs 2 of the 8 fields (surface normals).
-      const std::array<bool, kFieldCount> kept = deformation_fields(job.shading.normals);
+      // Only the deformation is read from earlier frames (foam_coverage_at): only its fields
+      // are synthesized and kept (a transform's partner field is released), so the history
+      // costs 2 of the 8 fields (surface normals).
+      const FieldMask kept = deformation_fields(job.shading.normals);
+      frame.foam_history.push_back(frame_fields(earlier, kept));
       for (CascadeFields& c : frame.foam_history.back().grids) {
         for (std::size_t q = 0; q < kept.size(); ++q) {
           if (!kept[q]) std::vector<double>().swap(c.values[q]);

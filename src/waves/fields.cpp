@@ -22,13 +22,20 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // c = F⁻¹(M₁h + i·M₂h), field₁ = Re c, field₂ = Im c.
 int synthesize_fields(const std::vector<Complex>& h, const PatternSpectrum& s,
                       const std::vector<Field>& fields, CascadeFields& out, int threads,
-                      const InverseFft2d& fft, SynthesisTimes* times, std::vector<Complex>& c) {
+                      const InverseFft2d& fft, SynthesisTimes* times, std::vector<Complex>& c,
+                      const FieldMask& wanted) {
   const int n = s.pattern.resolution;
   const double dk = wavenumber_spacing(s.pattern.size);
   int transforms = 0;
   c.resize(h.size());
+  const auto is_wanted = [&](Field q) { return wanted[static_cast<std::size_t>(q)]; };
   for (std::size_t f = 0; f < fields.size(); f += 2) {
     const bool paired = f + 1 < fields.size();
+    if (!is_wanted(fields[f]) && !(paired && is_wanted(fields[f + 1]))) {
+      out.values[static_cast<std::size_t>(fields[f])].clear();
+      if (paired) out.values[static_cast<std::size_t>(fields[f + 1])].clear();
+      continue;
+    }
     auto start = std::chrono::steady_clock::now();
     parallel_for(n, threads, [&](int b) {
       const int beta = wave_index(b, n);
@@ -66,7 +73,7 @@ int synthesize_fields(const std::vector<Complex>& h, const PatternSpectrum& s,
 
 void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time,
                         int threads, CascadeFields& out, SynthesisWorkspace& work,
-                        const InverseFft2d& fft, SynthesisTimes* times) {
+                        const InverseFft2d& fft, SynthesisTimes* times, const FieldMask& wanted) {
   OCEANREF_EXPECTS(
       low.pattern.size == high.pattern.size && low.pattern.resolution <= high.pattern.resolution,
       "the low and high patterns of one cascade: the same size L and N_l <= N_h");
@@ -78,23 +85,30 @@ void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
     evolve_spectrum(s, time, threads, h);
     if (times != nullptr) times->evolve += seconds_since(start);
   };
-  evolve(high, work.h_high);
+  bool high_fields = false;  // a field of the N_h grid wanted
+  for (int q = 0; q < kFieldCount; ++q) {
+    high_fields =
+        high_fields ||
+        (wanted[static_cast<std::size_t>(q)] &&
+         (low.pattern.resolution == high.pattern.resolution || !is_low_resolution_field(Field(q))));
+  }
+  if (high_fields) evolve(high, work.h_high);
   if (low.pattern.resolution == high.pattern.resolution) {
     out.transforms = synthesize_fields(
         work.h_high, high,
         {Field::height, Field::ddx_dz, Field::slope_x, Field::slope_z, Field::displacement_x,
          Field::displacement_z, Field::ddx_dx, Field::ddz_dz},
-        out, threads, fft, times, work.packed);
+        out, threads, fft, times, work.packed, wanted);
     return;
   }
   evolve(low, work.h_low);
   out.transforms = synthesize_fields(work.h_low, low,
                                      {Field::height, Field::displacement_x, Field::displacement_z},
-                                     out, threads, fft, times, work.packed) +
+                                     out, threads, fft, times, work.packed, wanted) +
                    synthesize_fields(work.h_high, high,
                                      {Field::slope_x, Field::slope_z, Field::ddx_dx, Field::ddz_dz,
                                       Field::ddx_dz},
-                                     out, threads, fft, times, work.packed);
+                                     out, threads, fft, times, work.packed, wanted);
 }
 
 CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,

@@ -105,12 +105,19 @@ struct SynthesisWorkspace {
   std::vector<Complex> h_low, h_high, packed;
 };
 
+// Which fields to synthesize (by Field index).
+using FieldMask = std::array<bool, kFieldCount>;
+inline constexpr FieldMask kAllFields{true, true, true, true, true, true, true, true};
+
 // Synthesizes the raw fields at time t into `out`, reusing its storage and the workspace.
 // `low` and `high` are the same cascade realized at the two resolutions (the same object when
-// multi-resolution is off).
+// multi-resolution is off). With a mask, a transform (two fields) runs only when it computes a
+// wanted field — its partner comes with it — and the other fields are left empty; every field
+// computed has the same bits as without the mask (the pairs do not change).
 void synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high, double time,
                         int threads, CascadeFields& out, SynthesisWorkspace& work,
-                        const InverseFft2d& fft = inverse_fft_2d, SynthesisTimes* times = nullptr);
+                        const InverseFft2d& fft = inverse_fft_2d, SynthesisTimes* times = nullptr,
+                        const FieldMask& wanted = kAllFields);
 // The same with fresh storage.
 CascadeFields synthesize_cascade(const PatternSpectrum& low, const PatternSpectrum& high,
                                  double time, int threads, const InverseFft2d& fft = inverse_fft_2d,

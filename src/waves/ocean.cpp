@@ -120,11 +120,15 @@ Ocean realize_ocean(const WaveSettings& settings, int threads) {
   return ocean;
 }
 
-std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads) {
+std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads,
+                                            const FieldMask& wanted) {
   const ReferenceFpEnvironment fp;
-  std::vector<CascadeFields> fields;
-  for (const CascadeSpectra& c : ocean.cascades) {
-    fields.push_back(synthesize_cascade(c.low, c.high, time, threads));
+  std::vector<CascadeFields> fields(ocean.cascades.size());
+  SynthesisWorkspace work;
+  for (std::size_t i = 0; i < ocean.cascades.size(); ++i) {
+    const CascadeSpectra& c = ocean.cascades[i];
+    synthesize_cascade(c.low, c.high, time, threads, fields[i], work, inverse_fft_2d, nullptr,
+                       wanted);
   }
   return fields;
 }

@@ -127,7 +127,9 @@ Ocean realize_ocean(const WaveSettings& settings, int threads);
 Tiling resolve_tiling(const WaveSettings& settings);
 
 // Raw fields of every cascade at time t.
-std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads);
+// With a mask: only the transforms that compute a wanted field (synthesize_cascade).
+std::vector<CascadeFields> synthesize_ocean(const Ocean& ocean, double time, int threads,
+                                            const FieldMask& wanted = kAllFields);
 
 // h(k, t) of every cascade, for direct summation at many points of one frame (and, for a
 // Gerstner ocean, one more entry that holds only the time t).

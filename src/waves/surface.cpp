@@ -87,8 +87,8 @@ PointFields combine_shading_at(const Ocean& ocean, const std::vector<CascadeFiel
   return combine_at(ocean, fields, evolved, x, z, mode);
 }
 
-std::array<bool, kFieldCount> deformation_fields(ShadingNormals normals) {
-  std::array<bool, kFieldCount> read{};
+FieldMask deformation_fields(ShadingNormals normals) {
+  FieldMask read{};
   read[static_cast<std::size_t>(Field::displacement_x)] = true;
   read[static_cast<std::size_t>(Field::displacement_z)] = true;
   if (normals == ShadingNormals::high_resolution) {
@@ -103,7 +103,7 @@ double foam_history_bytes(const WaveSettings& settings, ShadingNormals normals, 
   if (settings.model == WaveModel::gerstner) return 0.0;  // no grids (as wave_grid_bytes)
   const double low = static_cast<double>(settings.low_resolution) * settings.low_resolution;
   const double high = static_cast<double>(settings.resolution) * settings.resolution;
-  const std::array<bool, kFieldCount> kept = deformation_fields(normals);
+  const FieldMask kept = deformation_fields(normals);
   double per_cascade = 0.0;
   for (std::size_t q = 0; q < kept.size(); ++q) {
     if (kept[q]) per_cascade += (is_low_resolution_field(Field(q)) ? low : high) * sizeof(double);
@@ -160,7 +160,7 @@ PointFields exemplar_deformation_sum(const Ocean& ocean, const std::vector<Casca
     } else {
       const GridStencil& high = s.high[point * fields.size() + i];
       std::array<double, kFieldCount> raw{};
-      const std::array<bool, kFieldCount> read = deformation_fields(normals);
+      const FieldMask read = deformation_fields(normals);
       for (std::size_t q = 0; q < raw.size(); ++q) {
         if (read[q])
           raw[q] = read_value(f.values[q], is_low_resolution_field(Field(q)) ? low : high);

@@ -72,7 +72,7 @@ struct FrameStencils {
 };
 // The fields of the grids it reads: D_x and D_z for `surface` (the deformation is their
 // gradient), and the N_h ∂D fields as well for `high_resolution`.
-std::array<bool, kFieldCount> deformation_fields(ShadingNormals normals);
+FieldMask deformation_fields(ShadingNormals normals);
 // The bytes a foam history of `steps` earlier frames holds: those fields of every cascade.
 double foam_history_bytes(const WaveSettings& settings, ShadingNormals normals, int steps);
 SurfaceDeformation deformation_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
