@@ -714,13 +714,13 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
   if (job.shading.whitecaps && job.foam.steps > 0) {
     OCEANREF_EXPECTS(!job.footprint_filtering,
                      "accumulated foam without footprint filtering (scene validation)");
+    // Only the deformation is read from earlier frames (foam_coverage_at): only its fields are
+    // synthesized and kept (a transform's partner field is released), so the history costs 2
+    // of the 8 fields (surface normals).
+    const FieldMask kept = deformation_fields(job.shading.normals);
     for (int j = job.foam.steps; j >= 1; --j) {
       RenderJob earlier = job;
       earlier.time = job.time - j * job.foam.time_step;
-      // Only the deformation is read from earlier frames (foam_coverage_at): only its fields
-      // are synthesized and kept (a transform's partner field is released), so the history
-      // costs 2 of the 8 fields (surface normals).
-      const FieldMask kept = deformation_fields(job.shading.normals);
       frame.foam_history.push_back(frame_fields(earlier, kept));
       for (CascadeFields& c : frame.foam_history.back().grids) {
         for (std::size_t q = 0; q < kept.size(); ++q) {

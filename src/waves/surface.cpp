@@ -8,23 +8,24 @@
 
 namespace oceanref {
 
-CascadeSurface cascade_surface_from_grids(const CascadeFields& f, double x, double z,
-                                          Interpolation mode) {
-  // η, D_x and D_z share the N_l grid: the point is located once.
-  const GridStencil stencil = grid_stencil(
-      f.low_resolution, f.size, x, z,
-      mode == Interpolation::bicubic ? Interpolation::bicubic : Interpolation::bilinear);
+namespace {
+// One cascade's surface at a point located on its N_l grid: D_x, D_z and their gradients, and
+// with `heights` η and its gradient (the deformation does not need them: deformation_at).
+CascadeSurface cascade_surface_at(const CascadeFields& f, const GridStencil& stencil,
+                                  bool heights) {
   const auto read = [&](Field q) {
     return read_gradient(f.values[static_cast<std::size_t>(q)], stencil);
   };
-  const GridSample eta = read(Field::height);
-  const GridSample dx = read(Field::displacement_x);
-  const GridSample dz = read(Field::displacement_z);
   CascadeSurface c;
   const auto set = [&](Field q, double v) { c.raw[static_cast<std::size_t>(q)] = v; };
-  set(Field::height, eta.value);
-  set(Field::slope_x, eta.d_dx);
-  set(Field::slope_z, eta.d_dz);
+  if (heights) {
+    const GridSample eta = read(Field::height);
+    set(Field::height, eta.value);
+    set(Field::slope_x, eta.d_dx);
+    set(Field::slope_z, eta.d_dz);
+  }
+  const GridSample dx = read(Field::displacement_x);
+  const GridSample dz = read(Field::displacement_z);
   set(Field::displacement_x, dx.value);
   set(Field::displacement_z, dz.value);
   set(Field::ddx_dx, dx.d_dx);
@@ -32,6 +33,17 @@ CascadeSurface cascade_surface_from_grids(const CascadeFields& f, double x, doub
   set(Field::ddx_dz, dx.d_dz);
   c.ddz_dx = dz.d_dx;
   return c;
+}
+}  // namespace
+
+CascadeSurface cascade_surface_from_grids(const CascadeFields& f, double x, double z,
+                                          Interpolation mode) {
+  // η, D_x and D_z share the N_l grid: the point is located once.
+  return cascade_surface_at(f,
+                            grid_stencil(f.low_resolution, f.size, x, z,
+                                         mode == Interpolation::bicubic ? Interpolation::bicubic
+                                                                        : Interpolation::bilinear),
+                            true);
 }
 
 namespace {
@@ -140,30 +152,21 @@ std::size_t point_stencils(const std::vector<CascadeFields>& fields, double x, d
 PointFields exemplar_deformation_sum(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                      const FrameStencils& s, std::size_t point,
                                      ShadingNormals normals) {
-  const auto index = [](Field q) { return static_cast<std::size_t>(q); };
+  const FieldMask read = deformation_fields(normals);
   PointFields sum;
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const CascadeFields& f = fields[i];
     const GridStencil& low = s.low[point * fields.size() + i];
     const double u = ocean.cascades[i].choppiness;
     if (normals == ShadingNormals::surface) {
-      const GridSample dx = read_gradient(f.values[index(Field::displacement_x)], low);
-      const GridSample dz = read_gradient(f.values[index(Field::displacement_z)], low);
-      CascadeSurface c;
-      c.raw[index(Field::displacement_x)] = dx.value;
-      c.raw[index(Field::displacement_z)] = dz.value;
-      c.raw[index(Field::ddx_dx)] = dx.d_dx;
-      c.raw[index(Field::ddz_dz)] = dz.d_dz;
-      c.raw[index(Field::ddx_dz)] = dx.d_dz;
-      c.ddz_dx = dz.d_dx;
-      add_cascade_surface(sum, c, u);
-    } else {
+      add_cascade_surface(sum, cascade_surface_at(f, low, false), u);
+    } else {  // as cascade_from_grids reads them
       const GridStencil& high = s.high[point * fields.size() + i];
       std::array<double, kFieldCount> raw{};
-      const FieldMask read = deformation_fields(normals);
       for (std::size_t q = 0; q < raw.size(); ++q) {
-        if (read[q])
+        if (read[q]) {
           raw[q] = read_value(f.values[q], is_low_resolution_field(Field(q)) ? low : high);
+        }
       }
       add_cascade(sum, raw, u);
     }
