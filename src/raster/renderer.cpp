@@ -717,17 +717,22 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
     // Only the deformation is read from earlier frames (foam_coverage_at): only its fields are
     // synthesized and kept (a transform's partner field is released), so the history costs 2
     // of the 8 fields (surface normals).
+    // The frames are synthesized side by side, each on one thread (its small transforms do not
+    // gain from more; the fields do not depend on the thread count).
     const FieldMask kept = deformation_fields(job.shading.normals);
-    for (int j = job.foam.steps; j >= 1; --j) {
-      RenderJob earlier = job;
-      earlier.time = job.time - j * job.foam.time_step;
-      frame.foam_history.push_back(frame_fields(earlier, kept));
-      for (CascadeFields& c : frame.foam_history.back().grids) {
+    frame.foam_history.resize(static_cast<std::size_t>(job.foam.steps));
+    parallel_for(job.foam.steps, job.threads, [&](int k) {
+      RenderJob earlier = job;  // the oldest first: t − steps·Δt, …, t − Δt
+      earlier.time = job.time - (job.foam.steps - k) * job.foam.time_step;
+      earlier.threads = 1;
+      FrameFields& f = frame.foam_history[static_cast<std::size_t>(k)];
+      f = frame_fields(earlier, kept);
+      for (CascadeFields& c : f.grids) {
         for (std::size_t q = 0; q < kept.size(); ++q) {
           if (!kept[q]) std::vector<double>().swap(c.values[q]);
         }
       }
-    }
+    });
   }
   frame.filter = frame_filter(job);
   clock.lap(&RenderTimes::synthesis);
