@@ -54,12 +54,8 @@ PointFields combine_shading_at(const Ocean& ocean, const std::vector<CascadeFiel
                                const std::vector<EvolvedCascade>& evolved, double x, double z,
                                Interpolation mode, ShadingNormals normals);
 
-// What whitecap coverage reads of combine_shading_at at (x, z): the deformation's raw sums
-// Σu_i ∂D_i (∂D_z/∂x as combine_shading_at's ddz_dx) and det J. A sample's foam history reads
-// it from many frames of one ocean at the same point; their grids share every size, so the
-// exemplar points and each cascade's grid stencils are computed for the first frame and kept in
-// `stencils` for the next, and η, which the deformation does not depend on, is not read. The
-// same bits as those entries of combine_shading_at (tests/test_surface.cpp).
+// The deformation's raw sums Σu_i ∂D_i (∂D_z/∂x as combine_shading_at's ddz_dx) and det J at a
+// point: what whitecap coverage reads (deformation_at).
 struct SurfaceDeformation {
   double ddx_dx = 0.0, ddx_dz = 0.0, ddz_dx = 0.0, ddz_dz = 0.0;
   double jacobian = 1.0;
@@ -70,11 +66,16 @@ struct FrameStencils {
   std::vector<std::array<double, 2>> points;
   std::vector<GridStencil> low, high;
 };
-// The fields of the grids it reads: D_x and D_z for `surface` (the deformation is their
+// The fields deformation_at reads: D_x and D_z for `surface` (the deformation is their
 // gradient), and the N_h ∂D fields as well for `high_resolution`.
 FieldMask deformation_fields(ShadingNormals normals);
 // The bytes a foam history of `steps` earlier frames holds: those fields of every cascade.
 double foam_history_bytes(const WaveSettings& settings, ShadingNormals normals, int steps);
+// The deformation of combine_shading_at at (x, z). A sample's foam history reads it from many
+// frames of one ocean at the same point; their grids share every size, so the exemplar points
+// and each cascade's grid stencils are computed for the first frame and kept in `stencils` for
+// the next, and η, which the deformation does not depend on, is not read. The same bits as
+// those entries of combine_shading_at (tests/test_surface.cpp).
 SurfaceDeformation deformation_at(const Ocean& ocean, const std::vector<CascadeFields>& fields,
                                   const std::vector<EvolvedCascade>& evolved, double x, double z,
                                   Interpolation mode, ShadingNormals normals,
