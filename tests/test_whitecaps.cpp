@@ -425,3 +425,71 @@ TEST_CASE("foam: the history read from the newest back gives the forward recursi
   MESSAGE("histories that stopped early: " << skipped << " of " << compared);
   CHECK(skipped > 4000);  // the small-coverage kinds stop early (8861 of 20000 measured)
 }
+
+TEST_CASE("foam: the renderer's coverage over its history equals the old way, bit for bit") {
+  // foam_coverage_at reads an earlier instant's deformation from the fields it keeps
+  // (deformation_at), stopping early where older instants cannot matter. Recomputed here the
+  // way it was first written: every earlier instant synthesized in full, read at the point by
+  // combine_shading_at, its coverage W = ½ erfc((det J − ε)/√(2σ²)) with σ² from its
+  // deformation and the unresolved moments, accumulated forward over all instants. Grid
+  // interpolations, both normals, the unresolved variance kept (W strictly between 0 and 1).
+  for (const char* interpolation : {"bicubic", "bilinear"}) {
+    for (const ShadingNormals normals :
+         {ShadingNormals::surface, ShadingNormals::high_resolution}) {
+      CAPTURE(interpolation);
+      CAPTURE(static_cast<int>(normals));
+      Scene scene = whitecap_foam_scene(R"("steady")");
+      scene.shading.interpolation = std::string(interpolation) == "bicubic"
+                                        ? Interpolation::bicubic
+                                        : Interpolation::bilinear;
+      scene.shading.normals = normals;
+      // A slower decay than the helper's (δ = 0.025/max(W, ½) per step, 42 steady steps), so
+      // that earlier instants often decide the result.
+      scene.foam.decay = 0.5;
+      scene.foam.steps = steady_foam_steps(scene.foam.decay, scene.foam.time_step);
+      REQUIRE(scene.foam.steps == 42);
+      const Ocean ocean = realize_ocean(scene.waves, 1);
+      const RenderJob job = scene_render_job(scene, ocean, 2);
+      const RenderFrame frame = prepare_frame(job, {0.01, 0.01});
+      const auto coverage = [&](const PointFields& f) {
+        const Deformation a{1.0 + f.raw[static_cast<std::size_t>(Field::ddx_dx)],
+                            f.raw[static_cast<std::size_t>(Field::ddx_dz)], f.ddz_dx,
+                            1.0 + f.raw[static_cast<std::size_t>(Field::ddz_dz)]};
+        return whitecap_coverage(
+            f.jacobian,
+            jacobian_variance(a, job.unresolved_jacobian, frame.wind_cos, frame.wind_sin),
+            scene.shading.whitecap_threshold);
+      };
+      std::vector<std::vector<CascadeFields>> earlier;  // oldest first
+      for (int j = scene.foam.steps; j >= 1; --j) {
+        earlier.push_back(synthesize_ocean(ocean, scene.time - j * scene.foam.time_step, 2));
+      }
+      int partial = 0, from_history = 0, compared = 0;
+      for (int b = 0; b < 24; ++b) {
+        for (int a = 0; a < 24; ++a) {
+          const double x = 2.55 * a + 0.3, z = 2.35 * b + 0.2;
+          double expected = 0.0;
+          for (const std::vector<CascadeFields>& grids : earlier) {
+            const PointFields f =
+                combine_shading_at(ocean, grids, {}, x, z, scene.shading.interpolation, normals);
+            expected =
+                accumulated_foam(expected, coverage(f), scene.foam.decay, scene.foam.time_step);
+          }
+          const PointFields now = combine_shading_at(ocean, frame.fields.grids, {}, x, z,
+                                                     scene.shading.interpolation, normals);
+          expected =
+              accumulated_foam(expected, coverage(now), scene.foam.decay, scene.foam.time_step);
+          const double got = foam_coverage_at(frame, now, x, z, job.unresolved_jacobian);
+          CHECK(std::memcmp(&got, &expected, sizeof got) == 0);
+          partial += expected > 1e-6 && expected < 1.0 - 1e-6 ? 1 : 0;
+          from_history += expected != coverage(now) ? 1 : 0;
+          ++compared;
+        }
+      }
+      CHECK(partial > compared / 10);  // the variance matters at many of the points
+      MESSAGE("points " << compared << ", partial coverage " << partial
+                        << ", decided by an earlier instant " << from_history);
+      CHECK(from_history > compared / 50);  // and so do the earlier instants
+    }
+  }
+}
