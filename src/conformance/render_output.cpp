@@ -415,6 +415,12 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
                                ? "render.width x " + std::to_string(rows) + " rows, one band"
                                : "render.width x render.height";
   const std::string image = " (" + area + ")";
+  // With direct summation an earlier instant holds its h(k, t), which wave_grid_bytes covers.
+  const double foam_history =
+      !scene.shading.whitecaps ? 0.0
+      : scene.shading.interpolation == Interpolation::direct
+          ? scene.foam.steps * wave_grid_bytes(scene.waves)
+          : foam_history_bytes(scene.waves, scene.shading.normals, scene.foam.steps);
   return {
       {{kWaveGridsItem, wave_grid_bytes(scene.waves)},
        {kFootprintFilterItem, im.footprint_filtering ? footprint_filter_bytes(scene.waves) : 0.0},
@@ -425,10 +431,7 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
         pixels * channel_count(options.aov, adaptive(scene)) * sizeof(float)},
        {"error histograms (lighting, pixel)", 2 * kHistogramBytes},
        {"the accumulated foam's earlier instants (waves.foam.steps x the deformation's fields)",
-        !scene.shading.whitecaps ? 0.0
-        : scene.shading.interpolation == Interpolation::direct  // h(k, t): within the grids'
-            ? scene.foam.steps * wave_grid_bytes(scene.waves)
-            : foam_history_bytes(scene.waves, scene.shading.normals, scene.foam.steps)},
+        foam_history},
        {"per-sample radiance (--samples: " + area + " x render.samples_per_pixel)",
         options.keep_samples ? samples * kSampleBytes : 0.0},
        {"adaptive refinement (render.max_samples_per_pixel per thread)",
