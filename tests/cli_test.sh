@@ -395,6 +395,31 @@ printf '{"waves": {}, "camera": {"position": [0, 1, 0], "look_at": [0, 1, 0]}}' 
 expect 2 'camera: camera: look_at equals position' render "$tmp/bad.json" -o "$tmp/x.exr"
 [ ! -e "$tmp/x.exr" ] || fail "a failed render left an output file"
 
+# --set KEY=VALUE: the scene file's keys overridden, validated as in the file; the render is the
+# one of the file edited alike, byte for byte (its pixels and its header's scene hash).
+python3 - "$tmp/render.json" "$tmp/edited.json" <<'PYEOF'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s.setdefault("render", {}).update(width=12, height=8)
+s.setdefault("atmosphere", {})["sun_zenith_deg"] = 60
+json.dump(s, open(sys.argv[2], "w"))
+PYEOF
+"$bin" render "$tmp/edited.json" -o "$tmp/edited.exr" --threads 2 >"$tmp/edited.out" 2>/dev/null
+expect 0 '^pixel_sha256,' render "$tmp/render.json" -o "$tmp/set.exr" --threads 2 \
+  --set render.width=12 --set render.height=8 --set atmosphere.sun_zenith_deg=60
+checks=$((checks + 1))
+[ "$(grep '^pixel_sha256' "$tmp/out")" = "$(grep '^pixel_sha256' "$tmp/edited.out")" ] ||
+  fail "render --set gave other pixels than the edited scene file"
+checks=$((checks + 1))
+cmp -s "$tmp/set.exr" "$tmp/edited.exr" || fail "render --set: another EXR than the edited scene's"
+expect 2 '^oceanref: render.widht: unknown key' render "$tmp/render.json" -o "$tmp/x.exr" --set render.widht=3
+expect 2 '^oceanref: render.width: must be in \[1, 16384\], got 0$' render "$tmp/render.json" -o "$tmp/x.exr" --set render.width=0
+expect 2 '^oceanref: --set: expected KEY=VALUE' render "$tmp/render.json" -o "$tmp/x.exr" --set render.width
+# The two-level lighting's error layer is its bound: the fast rules' --lighting-error is refused.
+expect 2 '^oceanref: --lighting-error: measures the fast rules' render "$tmp/render.json" -o "$tmp/x.exr" \
+  --lighting-error --set shading.accuracy=reference --set shading.tolerance=null --set render.pixel_tolerance=0.05
+[ ! -e "$tmp/x.exr" ] || fail "a refused render left an output file"
+
 # The pixel integral's error (issue 20): summarised from 4 samples a pixel, absent at 1 spp.
 expect 0 '^pixel_error_p99_relative,[0-9]' render "$tmp/render.json" -o "$tmp/pe.exr" --spp 4 --threads 2
 checks=$((checks + 1))
@@ -1076,6 +1101,18 @@ for f in exr png; do
   checks=$((checks + 1))
   cmp -s "$tmp/whole.$f" "$tmp/merged.$f" || fail "merged $f differs from the single-process render's"
 done
+# Pieces rendered with --set merge with the same overrides (the scene they record), and only so.
+for i in 0 1; do
+  "$bin" render "$scene" --threads 2 --tile $i/2 -o "$tmp/set$i.piece" --set render.width=20 \
+    --set render.height=10 >/dev/null 2>&1 || fail "render --tile $i/2 --set failed"
+done
+"$bin" render "$scene" --threads 2 -o "$tmp/set_whole.exr" --set render.width=20 \
+  --set render.height=10 >"$tmp/set_whole.out" 2>/dev/null
+expect 0 '^pixel_sha256,' merge "$scene" "$tmp/set1.piece" "$tmp/set0.piece" -o "$tmp/set_merged.exr" \
+  --set render.width=20 --set render.height=10
+checks=$((checks + 1))
+cmp -s "$tmp/set_whole.exr" "$tmp/set_merged.exr" || fail "merge --set differs from render --set"
+expect 2 'rendered from another scene' merge "$scene" "$tmp/set0.piece" "$tmp/set1.piece" -o "$tmp/x.exr"
 expect 0 '^tile,1/3$' render "$scene" --tile 1/3 -o "$tmp/t.piece"
 grep -q '^rows,18,36$' "$tmp/out" || fail "render --tile 1/3 of 54 rows did not render rows 18 to 35"
 # On a terminal: the tile's rows and the files read and written, by name.

@@ -138,18 +138,18 @@ TEST_CASE("memory: render_scene refuses a scene over the limit before it allocat
 
 TEST_CASE(
     "memory: adaptive refinement holds, per thread, two sample buffers and one fragment "
-    "buffer of the finest level") {
+    "buffer of the finest level, and with the two-level lighting a correction buffer") {
   // The resolve refines a pixel's S×S samples to 3S×3S, 9S×9S, … up to n = S·3^r per axis
   // (render.max_samples_per_pixel = n²). Its two sample buffers trade places at each level, so
   // across pixels either may hold the finest level: both are reserved for n² samples, and the
-  // fragment window for n² fragments, once per row.
+  // fragment window for n² fragments, once per row. With reference lighting (the scenes' default)
+  // the two-level estimate also keeps the corrections of up to n² samples.
   RenderOutputOptions options;
   options.threads = 3;
-  const auto refinement_item = [&](const char* render) {
+  const auto refinement_item = [&](const char* render, const char* accuracy = "reference") {
     const Scene scene = parse_scene(nlohmann::json::parse(
-        std::string(
-            R"({"waves": {}, "render": {"width": 16, "height": 8, "samples_per_pixel": 4)") +
-        render + "}}"));
+        std::string(R"({"waves": {}, "shading": {"accuracy": ")") + accuracy +
+        R"("}, "render": {"width": 16, "height": 8, "samples_per_pixel": 4)" + render + "}}"));
     for (const MemoryItem& item : render_memory_estimate(scene, options).items) {
       if (item.what.rfind("adaptive refinement", 0) == 0) return item.bytes;
     }
@@ -157,9 +157,12 @@ TEST_CASE(
     return -1.0;
   };
   const double per_sample = static_cast<double>(sizeof(Fragment) + 2 * kResolvedSampleBytes);
+  const double corrected = per_sample + static_cast<double>(kCorrectionSampleBytes);
   CHECK(refinement_item(R"(, "pixel_tolerance": 0.01, "max_samples_per_pixel": 324)") ==
-        3 * 18 * 18 * per_sample);
+        3 * 18 * 18 * corrected);
   CHECK(refinement_item(R"(, "pixel_tolerance": 0.01, "max_samples_per_pixel": 36)") ==
+        3 * 6 * 6 * corrected);
+  CHECK(refinement_item(R"(, "pixel_tolerance": 0.01, "max_samples_per_pixel": 36)", "fast") ==
         3 * 6 * 6 * per_sample);
   CHECK(refinement_item("") == 0.0);  // fixed samples: no refinement
 }

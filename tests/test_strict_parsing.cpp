@@ -15,6 +15,7 @@
 #include "cli/text.h"
 #include "core/choice.h"
 #include "core/format.h"
+#include "raster/renderer.h"
 #include "scene/scene.h"
 #include "waves/ocean.h"
 
@@ -324,4 +325,37 @@ TEST_CASE("render's progress bar: the filled share, the percentage and the time 
   // Done: the time taken and the end of the line; shares round down.
   CHECK(progress_bar_text(1.0, 12.4) == bar(40) + "100%  12 s\n");
   CHECK(progress_bar_text(0.999, 1.0).find(bar(39) + "99%  ETA 0 s ") == 0);
+}
+
+TEST_CASE("render's progress off a terminal and its estimated total") {
+  using oceanref::cli::progress_estimate_text;
+  using oceanref::cli::progress_line_text;
+  CHECK(progress_line_text(0.25, 10.0) == "25% after 10 s, ETA 30 s");
+  CHECK(progress_line_text(0.5, 100.0) == "50% after 1 min 40 s, ETA 1 min 40 s");
+  CHECK(progress_line_text(1.0, 150.2) == "100% after 2 min 30 s");
+  // 2% of the rows in 5 s: 250 s in all.
+  CHECK(progress_estimate_text(0.02, 5.0) ==
+        "estimated total 4 min 10 s (from the first 2% of rows, spread over the image)");
+}
+
+TEST_CASE("render's rows in spread order: a permutation whose every prefix covers the band") {
+  for (const int count : {1, 2, 3, 50, 64, 360, 1000}) {
+    const std::vector<int> order = oceanref::spread_order(count);
+    REQUIRE(order.size() == static_cast<std::size_t>(count));
+    std::vector<int> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (int i = 0; i < count; ++i) CHECK(sorted[static_cast<std::size_t>(i)] == i);
+    // Every prefix of n rows leaves no gap between consecutive rows taken (or the band's ends)
+    // wider than 4·count/n: the share done is spread over the band.
+    for (int n = 1; n <= count; n = 2 * n + 1) {
+      std::vector<int> prefix(order.begin(), order.begin() + n);
+      prefix.push_back(-1);
+      prefix.push_back(count);
+      std::sort(prefix.begin(), prefix.end());
+      for (std::size_t i = 1; i < prefix.size(); ++i) {
+        CHECK(prefix[i] - prefix[i - 1] <= 4.0 * count / n + 1.0);
+      }
+    }
+  }
+  CHECK(oceanref::spread_order(8) == std::vector<int>{0, 4, 2, 6, 1, 5, 3, 7});
 }

@@ -2,19 +2,31 @@
 # Installs the Debian packages oceanref needs (only the missing ones) and fetches Debian's
 # `kissfft` source package into the build tree, so CMake can compile it with double scalars.
 #
-#   tools/setup.sh [BUILD_DIR]      (default BUILD_DIR: build)
+#   tools/setup.sh [--image] [BUILD_DIR]      (default BUILD_DIR: build)
+#
+# --image: only what building the `oceanref` program needs (the quick start's first image);
+# without it also what the tests, the Python module and the tools use.
 #
 # No system file is modified: the source package comes through a private apt configuration
 # (its own sources list derived from the system's, its own lists and cache) in a temporary
 # directory that is removed afterwards. Nothing is written when everything is already present.
 set -euo pipefail
 
+image_only=0
+if [ "${1:-}" = "--image" ]; then
+  image_only=1
+  shift
+fi
 build_dir=${1:-build}
-packages=(build-essential cmake ninja-build clang libclang-rt-dev clang-format dpkg-dev
-          libglm-dev libopenexr-dev libtinyobjloader-dev doctest-dev
-          nlohmann-json3-dev libcli11-dev libfftw3-dev pkg-config zlib1g-dev libmpfr-dev
-          chromium openimageio-tools python3-openimageio openexr python3-jsonschema
-          pybind11-dev python3-dev python3-numpy python3-pytest parallel)
+# What CMake's configure step finds and the program links (doctest: the test targets are
+# configured, not built; FFTW: `oceanref bench synthesis`'s peer).
+packages=(build-essential cmake ninja-build dpkg-dev pkg-config libglm-dev libopenexr-dev
+          libtinyobjloader-dev doctest-dev nlohmann-json3-dev libcli11-dev libfftw3-dev zlib1g-dev)
+if [ "$image_only" -eq 0 ]; then
+  packages+=(clang libclang-rt-dev clang-format libmpfr-dev
+             chromium openimageio-tools python3-openimageio openexr python3-jsonschema
+             pybind11-dev python3-dev python3-numpy python3-pytest parallel)
+fi
 
 as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
 

@@ -22,6 +22,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   ctest --test-dir build-asan --output-on-failure -j "$jobs"
   exit
 fi
-bash tools/build.sh build
+# The Python module on: build/ may have been configured by the quick start, before its packages.
+bash tools/build.sh build -DOCEANREF_PYTHON=ON
 ctest --test-dir build --output-on-failure -j "$jobs"
 bash tools/compare_compilers.sh

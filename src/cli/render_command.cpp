@@ -43,6 +43,16 @@ int samples_per_axis(int spp) {
   return axis;
 }
 
+// `--set KEY=VALUE` (repeatable) of the commands that read a scene file (apply_scene_override).
+void add_set_option(CLI::App& cmd, std::vector<std::string>& overrides) {
+  cmd.add_option("--set", overrides,
+                 "KEY=VALUE: override the scene file's key KEY (its JSON path, e.g. "
+                 "shading.accuracy=fast, render.width=320); VALUE is JSON or a bare word, null "
+                 "removes the key; validated as in the file and recorded in the outputs' scene; "
+                 "repeatable, applied in order")
+      ->allow_extra_args(false);
+}
+
 void log_progress(const std::string& message) {
   progress("oceanref", message);
 }
@@ -96,6 +106,7 @@ void print_report(std::ostream& out, const RenderReport& r, const Scene& scene,
   if (scene.image.mastin_antialiasing > 0.0) {
     out << "antialiased_pixels," << pe.antialiased_pixels << '\n';
   }
+  if (two_level_lighting(scene)) out << "corrected_samples," << r.corrected_samples << '\n';
   out << "unconverged_samples," << r.unconverged_samples << '\n';
   out << "integrand_evaluations," << r.integrand_evaluations << '\n';
   out << "memory_estimate_bytes," << format_number(render_memory_estimate(scene, options).total())
@@ -131,23 +142,46 @@ void print_gerstner_loops(std::ostream& out, const Scene& scene) {
   }
 }
 
-// A progress bar on stderr with the time left, extrapolated from the share done so far (rows of
-// sea cost more than rows of sky, so the estimate settles once the horizon is passed). Called
-// from worker threads: the bar is drawn under a lock.
-std::function<void(double)> progress_bar() {
+// A render's progress on stderr with the time left, extrapolated from the share done so far: the
+// renderer takes the rows in spread order (spread_order), so any share done is a sample of the
+// work, sky and sea alike. On a terminal a bar; elsewhere a line every kProgressLineSeconds. A
+// render estimated at kProgressLineSeconds or more prints its estimated total once its first
+// rows are done; times count from the first call (the renderer's share 0, when its rows start:
+// the frame's preparation is not their cost). Called from worker threads: written under a lock.
+std::function<void(double)> progress_reporter() {
   struct State {
     std::mutex mutex;
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-    double shown = 0.0;  // rows finish out of order: the bar never goes back
+    double shown = 0.0;  // rows finish out of order: the share never goes back
+    double last_line = 0.0;
+    bool started = false;
+    bool estimated = false;
+    bool terminal = isatty(STDERR_FILENO) != 0;
   };
   auto state = std::make_shared<State>();
   return [state](double share) {
     const std::lock_guard lock(state->mutex);
+    if (!state->started) {
+      state->started = true;
+      state->start = std::chrono::steady_clock::now();
+    }
     if (share < state->shown) return;
     state->shown = share;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - state->start).count();
-    std::cerr << progress_bar_text(share, elapsed) << std::flush;
+    if (!state->estimated && share > 0.0 && share < 1.0) {
+      state->estimated = true;
+      if (elapsed / share >= kProgressLineSeconds) {
+        std::cerr << (state->terminal ? "\r" : "")
+                  << "oceanref: " << progress_estimate_text(share, elapsed) << '\n';
+      }
+    }
+    if (state->terminal) {
+      std::cerr << progress_bar_text(share, elapsed) << std::flush;
+    } else if (elapsed - state->last_line >= kProgressLineSeconds) {
+      state->last_line = elapsed;
+      std::cerr << "oceanref: " << progress_line_text(share, elapsed) << '\n';
+    }
   };
 }
 }  // namespace
@@ -211,7 +245,7 @@ void render_sequence(std::ostream& out, const Scene& scene, const RenderOutputOp
                  format_number(adaptation[static_cast<std::size_t>(k)].time) + " s" + eta + ")");
     RenderOutputOptions options = base;
     options.frame = adaptation[static_cast<std::size_t>(k)];
-    if (base.progress) options.progress = progress_bar();  // a bar per frame
+    if (base.progress) options.progress = progress_reporter();  // per frame
     const std::string exr = frame_path(output, k);
     const std::string preview = png.empty() ? std::string() : frame_path(png, k);
     check_output_paths({{"--output", exr}, {"--png", preview}}, inputs);
@@ -282,6 +316,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     int spp = 0;
     bool aov = false;
     bool lighting_error = false;
+    std::vector<std::string> overrides;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
@@ -295,6 +330,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       ->check(integer_in(0, 1024, " (0: all cores)"));
   cmd->add_option("--spp", f->spp, "samples per pixel, a square number (overrides the scene)")
       ->check(integer_in(1, kMaxSamplesPerAxis * kMaxSamplesPerAxis, " (a square number)"));
+  add_set_option(*cmd, f->overrides);
   cmd->add_flag(
       "--aov", f->aov,
       "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
@@ -383,16 +419,22 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
     }
     const std::pair<int, int> frames =
         f->frames.empty() ? std::pair{0, 0} : parse_frames(f->frames);
-    const Scene scene = load_scene(f->scene);
+    const Scene scene = load_scene(f->scene, f->overrides, &std::cerr);
     if (options.tiles > scene.image.height) {
       throw UsageError("--tile", "N must be <= the image's " + std::to_string(scene.image.height) +
                                      " rows, got " + std::to_string(options.tiles));
     }
     options.samples_per_axis = samples_per_axis(f->spp);
     options.aov = f->aov;
+    if (f->lighting_error && two_level_lighting(scene)) {
+      throw UsageError("--lighting-error",
+                       "measures the fast rules' error at every sample; with shading.accuracy "
+                       "reference and render.pixel_tolerance the lighting_error layer is already "
+                       "the two-level estimate's bound (README, 'One error budget per pixel')");
+    }
     options.fast_lighting_error = f->lighting_error;
     options.log = log_progress;
-    if (isatty(STDERR_FILENO)) options.progress = progress_bar();
+    options.progress = progress_reporter();
     if (!f->tile.empty()) {
       const RenderPiece piece = render_scene_piece(scene, options);
       progress("oceanref", "writing " + f->output);
@@ -427,7 +469,7 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
 std::function<void(std::ostream&)> add_merge_command(CLI::App& app) {
   struct Flags {
     std::string scene, output, png;
-    std::vector<std::string> pieces;
+    std::vector<std::string> pieces, overrides;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
@@ -439,11 +481,12 @@ std::function<void(std::ostream&)> add_merge_command(CLI::App& app) {
   cmd->add_option("PIECES", f->pieces, "the N render pieces, in any order")->required();
   cmd->add_option("-o,--output", f->output, "OUT.exr")->required();
   cmd->add_option("--png", f->png, "PREVIEW.png: Reinhard 2002 tone mapping, sRGB transfer");
+  add_set_option(*cmd, f->overrides);
   return [f](std::ostream& out) {
     std::vector<std::string> inputs = f->pieces;
     inputs.push_back(f->scene);
     check_output_paths({{"--output", f->output}, {"--png", f->png}}, inputs);
-    Scene scene = load_scene(f->scene);
+    Scene scene = load_scene(f->scene, f->overrides, &std::cerr);
     std::vector<RenderPiece> pieces;
     for (const std::string& path : f->pieces) {
       progress("oceanref", "reading " + path);
@@ -467,6 +510,7 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
   struct Flags {
     std::string scene, pixel;
     int threads = 0;
+    std::vector<std::string> overrides;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
@@ -479,10 +523,12 @@ std::function<void(std::ostream&)> add_probe_command(CLI::App& app) {
   cmd->add_option("--pixel", f->pixel, "x,y (column, row from the top-left)")->required();
   cmd->add_option("--threads", f->threads, "worker threads (default: all cores)")
       ->check(integer_in(0, 1024, " (0: all cores)"));
+  add_set_option(*cmd, f->overrides);
   return [f](std::ostream& out) {
     const int threads = resolve_threads(f->threads);
     const std::vector<double> xy = parse_number_list("--pixel", f->pixel);
-    const auto p = prepare_render(load_scene(f->scene), threads, 0, log_progress);
+    const auto p =
+        prepare_render(load_scene(f->scene, f->overrides, &std::cerr), threads, 0, log_progress);
     p->job.estimate_fast_error = true;  // probe prints each term's error in either mode
     if (xy.size() != 2 || xy[0] < 0 || xy[1] < 0 || xy[0] >= p->scene.image.width ||
         xy[1] >= p->scene.image.height || xy[0] != std::floor(xy[0]) ||

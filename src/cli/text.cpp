@@ -55,14 +55,30 @@ double parse_number_in(const std::string& flag, std::string_view text, double lo
   return v;
 }
 
+std::string duration_text(double seconds) {
+  const long s = std::lround(seconds);
+  return (s >= 60 ? std::to_string(s / 60) + " min " : std::string()) + std::to_string(s % 60) +
+         " s";
+}
+
+std::string progress_line_text(double share, double elapsed) {
+  std::string text =
+      std::to_string(static_cast<int>(share * 100.0)) + "% after " + duration_text(elapsed);
+  if (share > 0.0 && share < 1.0) text += ", ETA " + duration_text(elapsed * (1.0 - share) / share);
+  return text;
+}
+
+std::string progress_estimate_text(double share, double elapsed) {
+  return "estimated total " + duration_text(elapsed / share) + " (from the first " +
+         std::to_string(std::lround(share * 100.0)) + "% of rows, spread over the image)";
+}
+
 std::string progress_bar_text(double share, double elapsed) {
   const int width = 40;
   const int filled = static_cast<int>(share * width);
   std::string eta;
   if (share > 0.0 && share < 1.0) {
-    const long left = std::lround(elapsed * (1.0 - share) / share);
-    eta = "  ETA " + (left >= 60 ? std::to_string(left / 60) + " min " : std::string()) +
-          std::to_string(left % 60) + " s ";
+    eta = "  ETA " + duration_text(elapsed * (1.0 - share) / share) + " ";
   } else if (share >= 1.0) {
     eta = "  " + std::to_string(std::lround(elapsed)) + " s\n";
   }

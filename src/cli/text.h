@@ -64,6 +64,17 @@ double max_memory_flag(const std::string& text);
 // written to a terminal: "\r  [####    ] 42%", then "  ETA 1 min 3 s " (the time left at the
 // rate so far, rounded to a second) while 0 < share < 1, or "  12 s" and a newline at 1.
 std::string progress_bar_text(double share, double elapsed);
+// A duration rounded to a second: "42 s", "1 min 3 s", "67 min 30 s".
+std::string duration_text(double seconds);
+// The progress of a render off a terminal (a log, CI): "42% after 1 min 3 s, ETA 1 min 27 s",
+// or at 1 "100% after 2 min 30 s".
+std::string progress_line_text(double share, double elapsed);
+// The estimated total of a render once `share` of it is done (its rows in spread order, a sample
+// of the work): "estimated total 4 min 10 s (from the first 2% of rows, spread over the image)".
+std::string progress_estimate_text(double share, double elapsed);
+// Off a terminal, a progress line every this many seconds; the estimated total is printed for
+// renders estimated at least this long.
+inline constexpr double kProgressLineSeconds = 10.0;
 // The process's peak resident memory so far (bytes; getrusage), for the render report.
 double peak_memory_bytes();
 // The help text of --max-memory.

@@ -171,6 +171,7 @@ struct RenderTally {
   double max_luminance = -HUGE_VAL;
   long unconverged_samples = 0;
   long integrand_evaluations = 0;
+  long corrected_samples = 0;
 
   void add(const RenderedImage& band) {
     // Hashed row by row: the serialized bytes of one row at a time.
@@ -197,11 +198,13 @@ struct RenderTally {
     pixel_error.add(band);
     unconverged_samples += band.unconverged_samples;
     integrand_evaluations += band.integrand_evaluations;
+    corrected_samples += band.corrected_samples;
   }
   // Once, after the last band.
   RenderReport report() {
     return {pixels.hex_digest(),  radiance.hex_digest(), lighting_error.result(),
-            pixel_error.result(), unconverged_samples,   integrand_evaluations};
+            pixel_error.result(), unconverged_samples,   integrand_evaluations,
+            corrected_samples};
   }
 };
 
@@ -435,7 +438,8 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
        {"per-sample radiance (--samples: " + area + " x render.samples_per_pixel)",
         options.keep_samples ? samples * kSampleBytes : 0.0},
        {"adaptive refinement (render.max_samples_per_pixel per thread)",
-        adaptive(scene) ? std::max(options.threads, 1) * refinement_bytes(axis, im.max_refinements)
+        adaptive(scene) ? std::max(options.threads, 1) *
+                              refinement_bytes(axis, im.max_refinements, two_level_lighting(scene))
                         : 0.0}}};
 }
 
@@ -526,6 +530,7 @@ RenderReport report_of(const RenderedScene& rendered) {
   r.pixel_error = summarize_pixel_error(rendered.image);
   r.unconverged_samples = rendered.image.unconverged_samples;
   r.integrand_evaluations = rendered.image.integrand_evaluations;
+  r.corrected_samples = rendered.image.corrected_samples;
   return r;
 }
 

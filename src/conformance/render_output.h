@@ -154,6 +154,7 @@ struct RenderReport {
   PixelErrorSummary pixel_error;
   long unconverged_samples = 0;
   long integrand_evaluations = 0;
+  long corrected_samples = 0;  // RenderedImage::corrected_samples
 };
 RenderReport report_of(const RenderedScene& rendered);
 

@@ -93,6 +93,8 @@ void write_render_piece(const std::string& path, const RenderPiece& piece) {
       {"displacement_bound", b.displacement_bound}};
   // Only with Mastin's anti-aliasing, so that the other pieces of format 3 stay as they were.
   if (piece.antialiased) header["antialiased_pixels"] = b.antialiased_pixels;
+  // Only with the two-level lighting (RenderJob::lighting_correction), likewise.
+  if (b.corrected_samples > 0) header["corrected_samples"] = b.corrected_samples;
   std::vector<std::uint8_t> bytes;
   const std::string text = kMagic + header.dump() + "\n";
   bytes.insert(bytes.end(), text.begin(), text.end());
@@ -173,6 +175,9 @@ RenderPiece read_render_piece(const std::string& path) {
           integer("antialiased_pixels", 0, static_cast<long>(b.width) * b.height);
     }
     b.unconverged_samples = integer("unconverged_samples", 0, std::numeric_limits<long>::max());
+    if (h.contains("corrected_samples")) {
+      b.corrected_samples = integer("corrected_samples", 1, std::numeric_limits<long>::max());
+    }
     b.integrand_evaluations = integer("integrand_evaluations", 0, std::numeric_limits<long>::max());
     const nlohmann::json& u = h.at("unresolved_slope_variance");
     if (!u.is_array() || u.size() != 2) {
@@ -276,6 +281,7 @@ RenderedImage merge_render_pieces(const Scene& scene, const std::vector<RenderPi
     image.unconverged_samples += band.unconverged_samples;
     image.integrand_evaluations += band.integrand_evaluations;
     image.capped_pixels += band.capped_pixels;
+    image.corrected_samples += band.corrected_samples;
     image.antialiased_pixels += band.antialiased_pixels;
     for_each_buffer(first.layers, first.adaptive, [&](auto member) {
       (image.*member).insert((image.*member).end(), (band.*member).begin(), (band.*member).end());

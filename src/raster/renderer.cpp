@@ -301,9 +301,16 @@ Deformation read_deformation(const PointFields& f) {
           1.0 + f.raw[static_cast<std::size_t>(Field::ddz_dz)]};
 }
 
-// One sample of a grid with `samples_per_axis` samples per pixel axis.
+// How the samples of the job's pixel grids are lit: the fast rules under a two-level estimate
+// (RenderJob::lighting_correction), else the scene's accuracy.
+LightingAccuracy sample_accuracy(const RenderJob& job) {
+  return job.lighting_correction ? LightingAccuracy::fast : job.shading.accuracy;
+}
+
+// One sample of a grid with `samples_per_axis` samples per pixel axis, its lighting integrals by
+// `accuracy`.
 SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm::dvec3& ray,
-                         int samples_per_axis) {
+                         int samples_per_axis, LightingAccuracy accuracy) {
   const RenderJob& job = frame.job;
   const Geometry& g = frame.geometry;
   const FrameLighting& light = frame.light;
@@ -374,8 +381,11 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
     p.lighting = four_term_lighting(sh, job.sky, light, p.view, p.normal, p.position.y);
   } else {
     const SurfaceFrame surface = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
-    p.lighting =
-        lighting_terms(sh, job.sky, light, p.view, surface, p.roughness, job.estimate_fast_error);
+    ShadingSettings by = sh;
+    by.accuracy = accuracy;
+    // The two-level estimate's lighting error is its correction's bound, not the fast rules'.
+    p.lighting = lighting_terms(by, job.sky, light, p.view, surface, p.roughness,
+                                job.estimate_fast_error && !job.lighting_correction);
   }
   if (is_ray_traced(job.renderer) && job.object_reflections && !g.object_triangles.empty()) {
     // The mirror ray about the shading normal: an object there replaces the reflected sky.
@@ -492,10 +502,89 @@ struct PixelEstimate {
   Vec3 error{};
 };
 
+// What the reference changes of one sample lit by the fast rules (RenderJob::lighting_correction):
+// reference − fast of the radiance and the terms, and the reference's estimated error of the
+// radiance. 0 for a sample that does not see the sea (no lighting integral).
+struct SampleCorrection {
+  Vec3 radiance{}, sun{}, sky{}, sea{};
+  Vec3 estimate{};
+};
+static_assert(sizeof(SampleCorrection) == kCorrectionSampleBytes, "refinement_bytes counts these");
+
+// The two-level estimate's correction of one pixel: the mean of its samples' corrections at one
+// level of the nested grid, and the lighting part of the pixel's bound.
+struct PixelCorrection {
+  Vec3 radiance{}, sun{}, sky{}, sea{};  // the means of reference − fast
+  // kPixelErrorStandardErrors standard errors of the mean radiance correction + the mean of the
+  // reference's estimates; +∞ where nothing estimates it (one sample of the sea, or none of the
+  // level's samples on the sea while others of the pixel are).
+  Vec3 error{};
+  bool known = true;  // the error estimated (not +∞)
+};
+
+// The mean of `field` over the values: Σ (1/n)·value in order from 0 (the resolve's sum).
+template <class Value>
+Vec3 mean_of(std::span<const Value> values, Vec3 Value::*field) {
+  const double per_sample = 1.0 / static_cast<double>(values.size());
+  Vec3 mean{};
+  for (const Value& v : values) {
+    for (std::size_t c = 0; c < 3; ++c) mean[c] += per_sample * (v.*field)[c];
+  }
+  return mean;
+}
+
+// The mean of `field` over the values of an S×S grid and its bound: kPixelErrorStandardErrors
+// standard errors of the mean with the samples taken as independent (0 for one sample).
+template <class Value>
+PixelEstimate fixed_grid_estimate(std::span<const Value> values, Vec3 Value::*field) {
+  PixelEstimate e;
+  e.mean = mean_of(values, field);
+  std::array<Vec3, kMaxSamplesPerAxis * kMaxSamplesPerAxis> x;
+  for (std::size_t i = 0; i < values.size(); ++i) x[i] = values[i].*field;
+  const Vec3 se = pixel_standard_error(std::span(x.data(), values.size()), e.mean);
+  for (std::size_t c = 0; c < 3; ++c) e.error[c] = kPixelErrorStandardErrors * se[c];
+  return e;
+}
+
+// The same for the n×n values of a refined grid (n a multiple of 3): the standard error from the
+// spread of the nine interleaved (n/3)×(n/3) grids' means (every third value from offset
+// (i, j)), each a stratified estimate of the pixel.
+template <class Value>
+PixelEstimate nested_grid_estimate(std::span<const Value> values, int n, Vec3 Value::*field) {
+  PixelEstimate e;
+  e.mean = mean_of(values, field);
+  std::array<Vec3, 9> sub{};
+  const int m = n / 3;
+  const double per_sample = 1.0 / (static_cast<double>(m) * m);
+  for (int b = 0; b < n; ++b) {
+    for (int a = 0; a < n; ++a) {
+      const Vec3& v = values[static_cast<std::size_t>(b) * static_cast<std::size_t>(n) +
+                             static_cast<std::size_t>(a)].*
+                      field;
+      Vec3& g = sub[static_cast<std::size_t>(3 * (b % 3) + a % 3)];
+      for (std::size_t c = 0; c < 3; ++c) g[c] += per_sample * v[c];
+    }
+  }
+  const Vec3 spread = pixel_standard_error(sub, e.mean);
+  for (std::size_t c = 0; c < 3; ++c) e.error[c] = kPixelErrorStandardErrors * spread[c];
+  return e;
+}
+
+// The estimate of the n×n values of a pixel grid (n = S: the fixed grid; else refined).
+template <class Value>
+PixelEstimate grid_estimate(std::span<const Value> values, int n, int samples_per_axis,
+                            Vec3 Value::*field) {
+  return n == samples_per_axis ? fixed_grid_estimate(values, field)
+                               : nested_grid_estimate(values, n, field);
+}
+
 // The pixel from its samples and their estimate, box-filtered: Σ (1/n)·value in sample order
-// from 0 (as mean_radiance); depth, normal and x0 the means over the sea samples.
+// from 0 (as mean_of); depth, normal and x0 the means over the sea samples. With a correction
+// (RenderJob::lighting_correction), `estimate` is the corrected pixel, the terms are corrected
+// alike and the lighting error is the correction's bound.
 void resolve_into(RenderedImage& image, std::size_t pixel, std::span<const SampleValue> values,
-                  const PixelEstimate& estimate, bool layers) {
+                  const PixelEstimate& estimate, bool layers,
+                  const PixelCorrection* correction = nullptr) {
   const double per_sample = 1.0 / static_cast<double>(values.size());
   Vec3 lighting_error{}, sun{}, sky{}, sea{}, foam{}, normal{}, x0{};
   double depth = 0.0;
@@ -514,6 +603,14 @@ void resolve_into(RenderedImage& image, std::size_t pixel, std::span<const Sampl
     for (std::size_t c = 0; c < 3; ++c) normal[c] += v.normal[c];
     x0[0] += v.x0.x;
     x0[2] += v.x0.y;
+  }
+  if (correction != nullptr) {
+    lighting_error = correction->error;
+    for (std::size_t c = 0; c < 3; ++c) {
+      sun[c] += correction->sun[c];
+      sky[c] += correction->sky[c];
+      sea[c] += correction->sea[c];
+    }
   }
   image.radiance[pixel] = estimate.mean;
   image.pixel_error[pixel] = estimate.error;
@@ -536,54 +633,25 @@ void resolve_into(RenderedImage& image, std::size_t pixel, std::span<const Sampl
   image.x0[pixel] = x0;
 }
 
-// The mean radiance of a pixel's samples, as resolve_into sums it (the same bits).
-Vec3 mean_radiance(std::span<const SampleValue> values) {
-  const double per_sample = 1.0 / static_cast<double>(values.size());
-  Vec3 mean{};
-  for (const SampleValue& v : values) {
-    for (std::size_t c = 0; c < 3; ++c) mean[c] += per_sample * v.radiance[c];
-  }
-  return mean;
-}
-
-PixelEstimate fixed_grid_estimate(std::span<const SampleValue> values) {
-  PixelEstimate e;
-  e.mean = mean_radiance(values);
-  std::array<Vec3, kMaxSamplesPerAxis * kMaxSamplesPerAxis> radiance;
-  for (std::size_t i = 0; i < values.size(); ++i) radiance[i] = values[i].radiance;
-  const Vec3 se = pixel_standard_error(std::span(radiance.data(), values.size()), e.mean);
-  for (std::size_t c = 0; c < 3; ++c) e.error[c] = kPixelErrorStandardErrors * se[c];
-  return e;
-}
-
-PixelEstimate nested_grid_estimate(std::span<const SampleValue> values, int n) {
-  PixelEstimate e;
-  e.mean = mean_radiance(values);
-  // The nine interleaved (n/3)×(n/3) grids (every third sample from offset (i, j)): each a
-  // stratified estimate of the pixel; their spread gives the standard error of their mean.
-  std::array<Vec3, 9> sub{};
-  const int m = n / 3;
-  const double per_sample = 1.0 / (static_cast<double>(m) * m);
-  for (int b = 0; b < n; ++b) {
-    for (int a = 0; a < n; ++a) {
-      const Vec3& v = values[static_cast<std::size_t>(b) * static_cast<std::size_t>(n) +
-                             static_cast<std::size_t>(a)]
-                          .radiance;
-      Vec3& g = sub[static_cast<std::size_t>(3 * (b % 3) + a % 3)];
-      for (std::size_t c = 0; c < 3; ++c) g[c] += per_sample * v[c];
-    }
-  }
-  const Vec3 spread = pixel_standard_error(sub, e.mean);
-  for (std::size_t c = 0; c < 3; ++c) e.error[c] = kPixelErrorStandardErrors * spread[c];
-  return e;
-}
-
-bool within_tolerance(const PixelEstimate& e, const RenderJob& job) {
+// The pixel's bound against the tolerance T = pixel_tolerance × the largest channel of the
+// (corrected) mean, per channel: whether pixel_error + lighting_error ≤ T, whether the pixel part
+// alone exceeds T/2, and whether it alone is within T (so that a finer correction can help).
+struct Budget {
+  bool within = true;
+  bool pixel_over_half = false;
+  bool pixel_within = true;
+};
+Budget budget(const PixelEstimate& e, const PixelCorrection* correction, double tolerance) {
   const double largest = std::max({e.mean[0], e.mean[1], e.mean[2]});
+  const double allowed = tolerance * largest;
+  Budget b;
   for (std::size_t c = 0; c < 3; ++c) {
-    if (!(e.error[c] <= job.pixel_tolerance * largest)) return false;
+    const double lighting = correction != nullptr ? correction->error[c] : 0.0;
+    if (!(e.error[c] + lighting <= allowed)) b.within = false;
+    if (!(e.error[c] <= 0.5 * allowed)) b.pixel_over_half = true;
+    if (!(e.error[c] <= allowed)) b.pixel_within = false;
   }
-  return true;
+  return b;
 }
 
 // For each pixel row of [first_row, last_row), the triangles (ascending) whose screen extent
@@ -616,16 +684,30 @@ bool reaches_column(const Geometry& g, std::uint32_t t, int x) {
 
 }  // namespace
 
+std::vector<int> spread_order(int count) {
+  int bits = 0;
+  while ((1L << bits) < count) ++bits;
+  std::vector<int> order;
+  order.reserve(static_cast<std::size_t>(count));
+  for (long i = 0; i < (1L << bits); ++i) {
+    long reversed = 0;  // i with its `bits` bits in reverse order
+    for (int b = 0; b < bits; ++b) reversed |= ((i >> b) & 1L) << (bits - 1 - b);
+    if (reversed < count) order.push_back(static_cast<int>(reversed));
+  }
+  return order;
+}
+
 int refined_samples_per_axis(int samples_per_axis, int refinements) {
   int n = samples_per_axis;
   for (int r = 0; r < refinements; ++r) n *= 3;
   return n;
 }
 
-double refinement_bytes(int samples_per_axis, int refinements) {
+double refinement_bytes(int samples_per_axis, int refinements, bool lighting_correction) {
   const double n = refined_samples_per_axis(samples_per_axis, refinements);
   const double finest = n * n;
-  return finest * static_cast<double>(sizeof(Fragment) + 2 * kResolvedSampleBytes);
+  const double correction = lighting_correction ? kCorrectionSampleBytes : 0.0;
+  return finest * (static_cast<double>(sizeof(Fragment) + 2 * kResolvedSampleBytes) + correction);
 }
 
 double luminance_contrast(const Vec3& a, const Vec3& b) {
@@ -739,7 +821,7 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
   frame.displacement_bound = height_bound(*job.ocean);
   frame.geometry = build_geometry(job, frame.fields, frame.displacement_bound, frame.filter);
   clock.lap(&RenderTimes::grid);
-  frame.light = frame_lighting(job.sky, job.shading);
+  frame.light = frame_lighting(job.sky, job.shading, job.lighting_correction);
   return frame;
 }
 
@@ -812,7 +894,8 @@ long add_mastin_samples(const RenderFrame& frame, const std::vector<Fragment>& f
       values.clear();
       const auto shade_at = [&](const Fragment& f, const SampleGrid& samples, int r, int c) {
         const glm::dvec3 ray = ray_direction(job.camera, samples.sample_x(c), samples.sample_y(r));
-        return sample_value(shade_sample(frame, f, ray, samples.samples_per_axis));
+        return sample_value(
+            shade_sample(frame, f, ray, samples.samples_per_axis, sample_accuracy(job)));
       };
       for (int b = 0; b < s; ++b) {
         for (int a = 0; a < s; ++a) {
@@ -843,7 +926,10 @@ long add_mastin_samples(const RenderFrame& frame, const std::vector<Fragment>& f
       const std::size_t pixel =
           static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
           static_cast<std::size_t>(x);
-      resolve_into(image, pixel, values, fixed_grid_estimate(values), job.layers);
+      resolve_into(
+          image, pixel, values,
+          fixed_grid_estimate(std::span<const SampleValue>(values), &SampleValue::radiance),
+          job.layers);
     }
     antialiased += count;
   });
@@ -893,6 +979,8 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     image.x0 = pixel_buffer("x0");
   }
   const bool adaptive = job.pixel_tolerance > 0.0;
+  OCEANREF_EXPECTS(adaptive || !job.lighting_correction,
+                   "the two-level lighting corrects the pixels of adaptive sampling");
   OCEANREF_EXPECTS(!(adaptive && job.keep_samples),
                    "the samples of the fixed grid are kept, not those of adaptive sampling");
   OCEANREF_EXPECTS(!(antialias && (adaptive || job.keep_samples)),
@@ -912,19 +1000,32 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
   std::atomic<long> unconverged{0};
   std::atomic<long> evaluations{0};
   std::atomic<long> capped{0};
+  std::atomic<long> corrected{0};
   std::atomic<int> rows_done{0};
   const int report_every = std::max(1, image.height / 50);
-  parallel_for(image.height, job.threads, [&](int y) {  // y: the band's row
+  // Rows in spread order (spread_order): any prefix of the rows done is a sample of the whole
+  // band, so the share done is the share of the work (sky rows are cheap, sea rows are not) and
+  // the time left extrapolates honestly. Each row's pixels are the same bits in any order.
+  const std::vector<int> order = spread_order(image.height);
+  if (progress) progress(0.0);  // the rows start (after the frame and the raster pass)
+  parallel_for(image.height, job.threads, [&](int index) {
+    const int y = order[static_cast<std::size_t>(index)];  // the band's row
     long row_unconverged = 0;
     long row_evaluations = 0;
     long row_capped = 0;
-    const auto shade = [&](const Fragment& f, const SampleGrid& samples, int row, int column) {
+    long row_corrected = 0;
+    // A sample of `samples` lit by `accuracy`, its integrals counted.
+    const auto shade_by = [&](const Fragment& f, const SampleGrid& samples, int row, int column,
+                              LightingAccuracy accuracy) {
       const glm::dvec3 ray =
           ray_direction(job.camera, samples.sample_x(column), samples.sample_y(row));
-      const SampleProbe p = shade_sample(frame, f, ray, samples.samples_per_axis);
+      const SampleProbe p = shade_sample(frame, f, ray, samples.samples_per_axis, accuracy);
       if (!p.lighting.converged) ++row_unconverged;
       row_evaluations += p.lighting.evaluations;
-      return sample_value(p);
+      return p;
+    };
+    const auto shade = [&](const Fragment& f, const SampleGrid& samples, int row, int column) {
+      return sample_value(shade_by(f, samples, row, column, sample_accuracy(job)));
     };
     // The pixel's samples (row-major) and the next level's, which trade places at each
     // refinement; reserved at the finest level once, so that what a thread holds is what
@@ -932,32 +1033,49 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     std::vector<SampleValue> values;
     std::vector<SampleValue> finer;
     std::vector<Fragment> window;
+    std::vector<SampleCorrection> corrections;  // lighting_correction: the level's samples
     if (adaptive) {
       const auto finest =
           static_cast<std::size_t>(refined_samples_per_axis(s, job.max_refinements));
       values.reserve(finest * finest);
       finer.reserve(finest * finest);
       window.reserve(finest * finest);
+      if (job.lighting_correction) corrections.reserve(finest * finest);
     }
-    std::vector<std::uint32_t> subset;  // the triangles that reach the pixel
-    // The n×n samples of pixel (x, image_row) refined to 3n×3n: the n×n are the centres of its
-    // 3×3 cells, the others shaded from their fragments (the pixel's footprint rasterized at the
-    // finer grid from `subset`: the same fragments as a whole raster pass at that grid).
-    const auto refine = [&](int x, int image_row, int n) {
-      const int m = 3 * n;
-      const SampleGrid samples{job.camera.width, job.camera.height, m};
+    std::vector<std::uint32_t> subset;                    // the triangles that reach the pixel
+    bool subset_of_pixel = false;                         // subset holds the current pixel's
+    const auto at = [](int row, int column, int width) {  // row-major index
+      return static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
+             static_cast<std::size_t>(column);
+    };
+    // The fragments of pixel (x, image_row) at `samples` (m×m per pixel) into `window`: its
+    // footprint rasterized from `subset` (the same fragments as a whole raster pass at that
+    // grid), or its rays traced.
+    const auto pixel_fragments = [&](int x, int image_row, const SampleGrid& samples) {
+      const int m = samples.samples_per_axis;
       window.assign(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), Fragment{});
       if (is_ray_traced(job.renderer)) {
         trace_fragments(frame, samples, image_row * m, image_row * m + m, window, image_row * m,
                         FragmentColumns{x * m, m}, 1);
-      } else {
-        rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
-                  job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
+        return;
       }
-      const auto at = [](int row, int column, int width) {  // row-major index
-        return static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
-               static_cast<std::size_t>(column);
-      };
+      if (!subset_of_pixel) {
+        subset.clear();
+        for (const std::uint32_t t :
+             row_triangles[static_cast<std::size_t>(image_row - first_row)]) {
+          if (reaches_column(g, t, x)) subset.push_back(t);
+        }
+        subset_of_pixel = true;
+      }
+      rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
+                job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
+    };
+    // The n×n samples of pixel (x, image_row) refined to 3n×3n: the n×n are the centres of its
+    // 3×3 cells, the others shaded from their fragments.
+    const auto refine = [&](int x, int image_row, int n) {
+      const int m = 3 * n;
+      const SampleGrid samples{job.camera.width, job.camera.height, m};
+      pixel_fragments(x, image_row, samples);
       finer.clear();
       for (int b = 0; b < m; ++b) {
         for (int a = 0; a < m; ++a) {
@@ -968,48 +1086,136 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
       }
       std::swap(values, finer);
     };
+    // The two-level correction of pixel (x, image_row) at level l of its nested grid (m = S·3^l
+    // samples per axis; the pixel's samples are n×n, n ≥ m): each of the level's samples that
+    // sees the sea lit again by the reference, reference − fast.
+    const auto correct = [&](int x, int image_row, int level, int n) {
+      const int m = refined_samples_per_axis(s, level);
+      const int step = n / m;  // the level's samples are the centres of step×step cells
+      const SampleGrid samples{job.camera.width, job.camera.height, m};
+      if (level > 0) pixel_fragments(x, image_row, samples);
+      corrections.clear();
+      bool level_sees_sea = false;
+      for (int b = 0; b < m; ++b) {
+        for (int a = 0; a < m; ++a) {
+          const SampleValue& fast = values[at(b * step + step / 2, a * step + step / 2, n)];
+          SampleCorrection d;
+          if (fast.hit) {
+            level_sees_sea = true;
+            const int row = image_row * m + b;
+            const int column = x * m + a;
+            const Fragment& f =
+                level > 0 ? window[at(b, a, m)]
+                          : fragments[at((image_row - first_row) * s + b, column, grid.columns())];
+            const SampleProbe r = shade_by(f, samples, row, column, job.shading.accuracy);
+            ++row_corrected;
+            for (std::size_t c = 0; c < 3; ++c) {
+              d.radiance[c] = r.radiance[c] - fast.radiance[c];
+              d.sun[c] = r.lighting.sun[c] - fast.sun[c];
+              d.sky[c] = r.lighting.sky[c] - fast.sky[c];
+              d.sea[c] = r.lighting.sea[c] - fast.sea[c];
+            }
+            d.estimate = r.lighting_error;
+          }
+          corrections.push_back(d);
+        }
+      }
+      const std::span<const SampleCorrection> level_values(corrections);
+      const PixelEstimate e = grid_estimate(level_values, m, s, &SampleCorrection::radiance);
+      PixelCorrection out;
+      out.radiance = e.mean;
+      out.sun = mean_of(level_values, &SampleCorrection::sun);
+      out.sky = mean_of(level_values, &SampleCorrection::sky);
+      out.sea = mean_of(level_values, &SampleCorrection::sea);
+      const Vec3 estimates = mean_of(level_values, &SampleCorrection::estimate);
+      const bool pixel_sees_sea =
+          std::any_of(values.begin(), values.end(), [](const SampleValue& v) { return v.hit; });
+      const bool unknown = pixel_sees_sea && (!level_sees_sea || m * m < 2);
+      out.known = !unknown;
+      for (std::size_t c = 0; c < 3; ++c) {
+        out.error[c] = unknown ? HUGE_VAL : e.error[c] + estimates[c];
+      }
+      return out;
+    };
     for (int x = 0; x < image.width; ++x) {
       const std::size_t pixel =
           static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
           static_cast<std::size_t>(x);
       values.clear();
+      subset_of_pixel = false;
       for (int b = 0; b < s; ++b) {
         for (int a = 0; a < s; ++a) {
           const int band_row = y * s + b;
           const int row = first_row * s + band_row;  // of the image's sample grid
           const int column = x * s + a;
-          const std::size_t at =
-              static_cast<std::size_t>(band_row) * static_cast<std::size_t>(grid.columns()) +
-              static_cast<std::size_t>(column);
-          values.push_back(shade(fragments[at], grid, row, column));
-          if (job.keep_samples) image.sample_radiance[at] = values.back().radiance;
+          const std::size_t i = at(band_row, column, grid.columns());
+          values.push_back(shade(fragments[i], grid, row, column));
+          if (job.keep_samples) image.sample_radiance[i] = values.back().radiance;
         }
       }
-      PixelEstimate estimate = fixed_grid_estimate(values);
+      const auto estimate_of = [&](int n) {
+        return grid_estimate(std::span<const SampleValue>(values), n, s, &SampleValue::radiance);
+      };
+      PixelEstimate estimate = estimate_of(s);
+      std::optional<PixelCorrection> correction;
       if (adaptive) {
-        int n = s;  // samples per axis
-        // One sample estimates nothing: refined at least once.
-        for (int r = 0;
-             r < job.max_refinements && !(values.size() > 1 && within_tolerance(estimate, job));
-             ++r) {
-          if (r == 0 && job.renderer == Renderer::raster) {
-            subset.clear();
-            for (const std::uint32_t t : row_triangles[static_cast<std::size_t>(y)]) {
-              if (reaches_column(g, t, x)) subset.push_back(t);
-            }
+        const int image_row = first_row + y;
+        int refinements = 0;
+        int n = s;       // samples per axis
+        int level = -1;  // of the correction (lighting_correction)
+        const auto corrected_estimate = [&] {
+          PixelEstimate e = estimate;
+          if (correction) {
+            for (std::size_t c = 0; c < 3; ++c) e.mean[c] += correction->radiance[c];
           }
-          refine(x, first_row + y, n);
+          return e;
+        };
+        const auto refine_samples = [&] {
+          refine(x, image_row, n);
           n *= 3;
-          estimate = nested_grid_estimate(values, n);
+          ++refinements;
+          estimate = estimate_of(n);
+        };
+        const auto refine_correction = [&] {
+          if (level == refinements) refine_samples();
+          ++level;
+          correction = correct(x, image_row, level, n);
+        };
+        if (job.lighting_correction) refine_correction();
+        // Until the bound meets the tolerance (one sample estimates nothing: refined at least
+        // once). A reference sample costs about a hundred fast ones, so the samples are refined
+        // first, while the pixel part exceeds half the budget; the correction then, if the pixel
+        // part alone is within the budget (else no correction can bring the pixel within it).
+        for (;;) {
+          const Budget b = budget(corrected_estimate(), correction ? &*correction : nullptr,
+                                  job.pixel_tolerance);
+          if (b.within && values.size() > 1) break;
+          const bool can_refine = refinements < job.max_refinements;
+          if (can_refine && (!correction || b.pixel_over_half || values.size() < 2)) {
+            refine_samples();
+          } else if (correction &&
+                     ((b.pixel_within && level < kMaxCorrectionRefinements) ||
+                      !correction->known) &&
+                     level < job.max_refinements) {
+            refine_correction();
+          } else if (can_refine) {
+            refine_samples();
+          } else {
+            break;
+          }
         }
+        estimate = corrected_estimate();
         image.pixel_samples[pixel] = static_cast<double>(values.size());
-        if (!within_tolerance(estimate, job)) ++row_capped;
+        const bool missed =
+            !budget(estimate, correction ? &*correction : nullptr, job.pixel_tolerance).within;
+        if (missed) ++row_capped;
       }
-      resolve_into(image, pixel, values, estimate, layers);
+      resolve_into(image, pixel, values, estimate, layers, correction ? &*correction : nullptr);
     }
     unconverged += row_unconverged;
     evaluations += row_evaluations;
     capped += row_capped;
+    corrected += row_corrected;
     const int done = ++rows_done;
     if (progress && (done % report_every == 0 || done == image.height)) {
       progress(static_cast<double>(done) / image.height);
@@ -1023,6 +1229,7 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
   image.unconverged_samples = unconverged;
   image.integrand_evaluations = evaluations;
   image.capped_pixels = capped;
+  image.corrected_samples = corrected;
   require_finite(image);
   return image;
 }
@@ -1118,7 +1325,7 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
           fragments[static_cast<std::size_t>(b) * static_cast<std::size_t>(grid.columns()) +
                     static_cast<std::size_t>(column)];
       const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-      SampleProbe p = shade_sample(frame, f, ray, s);
+      SampleProbe p = shade_sample(frame, f, ray, s, job.shading.accuracy);
       p.image_x = grid.sample_x(column);
       p.image_y = grid.sample_y(row);
       out.push_back(p);

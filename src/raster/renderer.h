@@ -40,6 +40,18 @@ static_assert(3 * kMaxSamplesPerAxis <= kMaxAdaptiveSamplesPerAxis);
 inline constexpr double kPixelErrorStandardErrors = 3.0;
 // The smallest pixel tolerance a scene may ask for (relative to the pixel's largest channel).
 inline constexpr double kMinPixelTolerance = 1e-4;
+// The two-level estimate's reference tolerance without shading.tolerance: this share of
+// render.pixel_tolerance, so that the integrators' estimates take about a tenth of the bound.
+inline constexpr double kTwoLevelLightingShare = 0.1;
+// The two-level estimate's Gauss–Hermite order of its fast samples without shading.sky_order: 16×16
+// nodes (~35 µs a sample) leave a correction several times narrower than the fast mode's 4×4
+// (reference/ACCURACY.md, "One error budget per pixel").
+inline constexpr int kTwoLevelSkyOrder = 16;
+// The finest level of the two-level correction: the 3S×3S grid ((3S)² reference samples). A
+// level finer still costs about 0.4 s of CPU per pixel at S = 2; a pixel whose bound needs it is
+// capped. (Finer only while none of the level's samples sees the sea and others of the pixel do:
+// then nothing estimates the correction, and only those few samples are lit again.)
+inline constexpr int kMaxCorrectionRefinements = 1;
 
 // Which renderer decides what a sample sees (`render --renderer`): the scanline rasterizer
 // (raster/rasterizer.h) or Mastin's height-field ray tracer (trace/height_field_tracer.h), both
@@ -97,6 +109,17 @@ struct RenderJob {
   // the same bits. 0: the fixed S×S grid (no refinement).
   double pixel_tolerance = 0.0;
   int max_refinements = 0;  // S·3^max_refinements ≤ kMaxAdaptiveSamplesPerAxis
+  // The two-level estimate of adaptive sampling with reference lighting (`render.pixel_tolerance`
+  // with shading.accuracy reference; README, "One error budget per pixel"): every sample is shaded
+  // by the fast rules (shading.sky_order, sun_order: FrameLighting's nodes), and the pixel is
+  // corrected by the mean of (reference − fast) over the samples of one level of its nested grid
+  // (the S×S grid, then 3S×3S, …), the reference at shading.tolerance. The pixel's expected value
+  // is the reference's; pixel_error bounds the fast level's pixel integral, lighting_error the
+  // correction (kPixelErrorStandardErrors standard errors of its mean + the reference's own
+  // estimates), and each pixel is refined (the fast level or the correction's, whichever misses
+  // its share; the correction up to kMaxCorrectionRefinements) until pixel_error +
+  // lighting_error ≤ pixel_tolerance × its largest channel.
+  bool lighting_correction = false;
   // Mastin's adaptive anti-aliasing (`render.mastin_antialiasing`; Mastin, Watterberg & Mareda
   // 1987: "16 extra rays per pixel in the neighborhood of large color discontinuities"): after
   // the S×S grid, a pixel whose luminance contrast with one of its four neighbours,
@@ -161,7 +184,12 @@ struct RenderedImage {
   // image position ((c + ½)/S, first_row + (r + ½)/S)); each pixel's radiance is the mean of
   // its S×S samples, 1/S² each, summed in row-major order.
   std::vector<Vec3> sample_radiance;
-  long capped_pixels = 0;        // adaptive pixels that reached the cap above the tolerance
+  // Adaptive pixels that reached the cap above the tolerance: those whose pixel_error +
+  // lighting_error exceeds pixel_tolerance × their largest channel in some channel.
+  long capped_pixels = 0;
+  // RenderJob::lighting_correction: the samples lit again by the reference to correct their
+  // pixels ((S·3^l)² of a pixel at the correction's level l; those that see the sea).
+  long corrected_samples = 0;
   long antialiased_pixels = 0;   // pixels that got Mastin's 16 extra samples
   long unconverged_samples = 0;  // samples whose reference integrals missed the tolerance
   long integrand_evaluations = 0;
@@ -175,15 +203,24 @@ inline constexpr int kMastinExtraSamplesPerAxis = 4;
 // two pixels (0 when both are black): the discontinuity measure of Mastin's anti-aliasing.
 double luminance_contrast(const Vec3& a, const Vec3& b);
 
+// The indices 0 … count − 1 in bit-reversed order (van der Corput's sequence, those < count):
+// every prefix is spread evenly over the range (the first 2^j cover it at a stride of
+// 2^(bits − j)). The order in which render_rows renders a band's rows.
+std::vector<int> spread_order(int count);
+
 // S·3^refinements: the samples per axis of a pixel of S×S refined `refinements` times (the cap
 // of adaptive sampling; S without refinement).
 int refined_samples_per_axis(int samples_per_axis, int refinements);
 // The bytes the resolve keeps of one sample (its radiance, layers and hit; sizeof(SampleValue)).
 inline constexpr std::size_t kResolvedSampleBytes = 208;
+// The bytes the two-level estimate keeps of one sample's correction (reference − fast of the
+// radiance and the three terms, and the reference's estimate).
+inline constexpr std::size_t kCorrectionSampleBytes = 5 * sizeof(Vec3);
 // The scratch memory of one thread's adaptive refinement from S×S samples up to
-// n = S·3^refinements per axis: two sample buffers (a level and the next, trading places) and one
-// fragment buffer, each reserved for the finest level's n² [bytes].
-double refinement_bytes(int samples_per_axis, int refinements);
+// n = S·3^refinements per axis: two sample buffers (a level and the next, trading places), one
+// fragment buffer and with the two-level lighting (RenderJob::lighting_correction) one buffer of
+// the samples' corrections, each reserved for the finest level's n² [bytes].
+double refinement_bytes(int samples_per_axis, int refinements, bool lighting_correction);
 
 // The standard error of the mean of a pixel's samples, per channel:
 // √(Σᵢ (xᵢ − mean)² / (n (n − 1))), summed in sample order; 0 for n < 2. The samples are those of

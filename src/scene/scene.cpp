@@ -704,15 +704,9 @@ void parse_rendering(const Section& top, Scene& scene) {
   h.brdf.fresnel = choice(shading, "fresnel", kShadingFresnelForms, "exact");
   h.brdf.erfc = choice(shading, "erfc", kErfcForms, "exact");
   h.accuracy = choice(shading, "accuracy", kLightingAccuracies, "reference");
-  // Each setting belongs to one mode: a key of the other is a mistake, not something to ignore.
+  // Each setting belongs to one mode: a key of the other is a mistake, not something to ignore
+  // (sky_order and sun_order also serve the reference under adaptive sampling: checked below).
   const bool fast = h.accuracy == LightingAccuracy::fast;
-  for (const char* key : {"sky_order", "sun_order"}) {
-    if (!fast && shading.has(key)) {
-      throw SceneError(std::string("shading.") + key,
-                       "applies to shading.accuracy \"fast\" only (the reference mode is "
-                       "converged to shading.tolerance)");
-    }
-  }
   if (fast && shading.has("tolerance")) {
     throw SceneError("shading.tolerance",
                      "applies to shading.accuracy \"reference\" only (fast uses sky_order and "
@@ -741,6 +735,25 @@ void parse_rendering(const Section& top, Scene& scene) {
   }
   im.samples_per_axis = axis;
   parse_adaptive_sampling(render, im);
+  if (two_level_lighting(scene)) {
+    // The samples' reference lighting takes a tenth of the pixel's budget unless the scene says
+    // (README, "One error budget per pixel").
+    if (!shading.has("tolerance")) {
+      h.tolerance = std::clamp(kTwoLevelLightingShare * im.pixel_tolerance, kMinLightingTolerance,
+                               kMaxLightingTolerance);
+    }
+    if (!shading.has("sky_order")) h.sky_order = kTwoLevelSkyOrder;
+  } else if (!fast) {
+    for (const char* key : {"sky_order", "sun_order"}) {
+      if (shading.has(key)) {
+        throw SceneError(std::string("shading.") + key,
+                         "applies to shading.accuracy \"fast\", or to \"reference\" with "
+                         "render.pixel_tolerance (the rules the pixels' samples are lit by "
+                         "before the reference corrects them); the reference mode is converged "
+                         "to shading.tolerance");
+      }
+    }
+  }
   im.footprint_filtering = render.boolean("footprint_filtering", false);
   im.renderer = choice(render, "renderer", kRenderers, "raster");
   im.surface_tolerance = render.number("surface_tolerance", kDefaultSurfaceTolerance,
@@ -1226,6 +1239,11 @@ Camera scene_camera(const Scene& s) {
                      s.image.height);
 }
 
+bool two_level_lighting(const Scene& scene) {
+  return scene.image.pixel_tolerance > 0.0 && scene.shading.model == ShadingModel::bruneton &&
+         scene.shading.accuracy == LightingAccuracy::reference;
+}
+
 RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) {
   const ReferenceFpEnvironment fp;
   RenderJob job;
@@ -1246,6 +1264,7 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) 
   job.samples_per_axis = scene.image.samples_per_axis;
   job.pixel_tolerance = scene.image.pixel_tolerance;
   job.max_refinements = scene.image.max_refinements;
+  job.lighting_correction = two_level_lighting(scene);
   job.footprint_filtering = scene.image.footprint_filtering;
   job.renderer = scene.image.renderer;
   job.surface_tolerance = scene.image.surface_tolerance;
@@ -1260,13 +1279,63 @@ Sky scene_sky(const Scene& s) {
                   s.atmosphere.sun_azimuth_deg * deg);
 }
 
+void apply_scene_override(json& document, const std::string& assignment) {
+  const std::size_t equals = assignment.find('=');
+  const std::string key = assignment.substr(0, equals);
+  if (equals == std::string::npos || key.empty()) {
+    throw SceneError("--set",
+                     "expected KEY=VALUE with KEY a scene key's JSON path (e.g. "
+                     "shading.accuracy=fast), got '" +
+                         escape_value(assignment) + "'");
+  }
+  const std::string text = assignment.substr(equals + 1);
+  // A JSON value as written, else the bare word as a string (strict: one value, finite).
+  json value;
+  try {
+    value = parse_scene_json(text, key);
+  } catch (const SceneError&) {
+    value = text;
+  }
+  json* object = &document;
+  std::string path;
+  for (std::size_t start = 0;;) {
+    const std::size_t dot = key.find('.', start);
+    const std::string part = key.substr(start, dot == std::string::npos ? dot : dot - start);
+    if (part.empty()) {
+      throw SceneError(key, "--set: an empty part in the key's path");
+    }
+    if (!object->is_object()) {
+      throw SceneError(path, "--set " + key + ": " + path + " is not an object");
+    }
+    path += (path.empty() ? "" : ".") + part;
+    if (dot == std::string::npos) {
+      if (value.is_null()) {
+        object->erase(part);
+      } else {
+        (*object)[part] = value;
+      }
+      return;
+    }
+    if (!object->contains(part)) (*object)[part] = json::object();
+    object = &(*object)[part];
+    start = dot + 1;
+  }
+}
+
 Scene load_scene(const std::string& path, std::ostream* warnings) {
+  return load_scene(path, {}, warnings);
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                 std::ostream* warnings) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path, "cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path, "cannot read the scene file");
-  Scene scene = parse_scene(parse_scene_json(text.str(), path));
+  json document = parse_scene_json(text.str(), path);
+  for (const std::string& o : overrides) apply_scene_override(document, o);
+  Scene scene = parse_scene(document);
   scene.directory = std::filesystem::path(path).parent_path().string();
   if (warnings != nullptr) {
     for (const UnusedKey& u : scene.unused) {

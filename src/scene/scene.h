@@ -105,6 +105,9 @@ const std::vector<std::string>& scene_key_paths();
 // The camera and sky of a scene (the validated settings resolved).
 Camera scene_camera(const Scene& scene);
 Sky scene_sky(const Scene& scene);
+// Whether the scene's render is the two-level estimate (RenderJob::lighting_correction): adaptive
+// sampling (render.pixel_tolerance) of Bruneton's BRDF at reference accuracy.
+bool two_level_lighting(const Scene& scene);
 // Everything `render` needs from a scene and its realized ocean (which must outlive the job).
 RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads);
 
@@ -120,5 +123,16 @@ Scene parse_scene(const nlohmann::json& document);
 // the one-argument form reports on std::cerr.
 Scene load_scene(const std::string& path, std::ostream* warnings);
 Scene load_scene(const std::string& path);
+
+// One override of a scene file's key on the command line (`render --set KEY=VALUE`): KEY the
+// key's JSON path with dots (e.g. "shading.accuracy"; the objects on the way are created),
+// VALUE a JSON value (a number, true, false, "text", [..], {..}) or else a bare word taken as a
+// string; `null` removes the key (its default applies). Applied to the document before
+// parse_scene, so the override is validated exactly as in a file and is part of the scene the
+// outputs record (Scene::canonical). Errors are SceneErrors naming KEY.
+void apply_scene_override(nlohmann::json& document, const std::string& assignment);
+// load_scene with the overrides applied in order.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                 std::ostream* warnings);
 
 }  // namespace oceanref

@@ -85,8 +85,8 @@ LightingTerms fast_lighting_with_error(const ShadingSettings& sh, const Sky& sky
 
 }  // namespace
 
-FrameLighting frame_lighting(const Sky& sky, const ShadingSettings& sh) {
-  const bool fast = sh.accuracy == LightingAccuracy::fast;
+FrameLighting frame_lighting(const Sky& sky, const ShadingSettings& sh, bool fast_rules) {
+  const bool fast = fast_rules || sh.accuracy == LightingAccuracy::fast;
   FrameLighting l{
       sky.sun_direction,
       sun_radiance_rgb(sky),

@@ -70,7 +70,11 @@ struct FrameLighting {
   Vec3 radiance_floor;                // reference: the absolute tolerance per channel
   double sun_reflectance_floor;       // reference: the same for the sun's reflectance
 };
-FrameLighting frame_lighting(const Sky& sky, const ShadingSettings& shading);
+// The fast rules' nodes are built for shading.accuracy fast, and for reference accuracy too when
+// `fast_rules` (the renderer's two-level estimate shades every sample by them and corrects each
+// pixel by the reference: RenderJob::lighting_correction).
+FrameLighting frame_lighting(const Sky& sky, const ShadingSettings& shading,
+                             bool fast_rules = false);
 
 // The lighting terms of one sample and their estimated absolute errors.
 struct LightingTerms {

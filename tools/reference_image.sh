@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The quick start's second step: the converged reference image of the default view
+# (reference/scenes/default.json), every pixel within a stated total error — the two-level
+# estimate to render.pixel_tolerance (README, "One error budget per pixel"): its pixel integral
+# and its lighting integrals both bounded, per pixel, in the EXR's pixel_error and lighting_error
+# layers. Once the first 2% of its rows (spread over the image) are done it prints its estimated
+# total time; then its progress. Writes build/default_reference.exr (with --aov layers) and
+# build/default_reference.png, and prints the render's report.
+#
+#   bash tools/reference_image.sh [TOLERANCE] [WxH]     (default 0.01 and the scene's 640x360)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+tolerance=${1:-0.01}
+size=${2:-}
+bin=build/src/oceanref
+[ -x "$bin" ] || bash tools/quickstart.sh >/dev/null
+overrides=(--set "render.pixel_tolerance=$tolerance")
+if [ -n "$size" ]; then
+  overrides+=(--set "render.width=${size%x*}" --set "render.height=${size#*x}")
+fi
+echo "== $bin render reference/scenes/default.json ${overrides[*]} --aov" \
+  "-o build/default_reference.exr --png build/default_reference.png"
+start=$SECONDS
+$bin render reference/scenes/default.json "${overrides[@]}" --aov \
+  -o build/default_reference.exr --png build/default_reference.png
+echo "reference_image: $((SECONDS - start)) s; a pixel is within its bound when pixel_error +"
+echo "lighting_error <= $tolerance x its largest channel (capped_pixels above counts the others)"
