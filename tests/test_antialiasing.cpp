@@ -164,3 +164,17 @@ TEST_CASE("Mastin anti-aliasing: a scene setting, not with adaptive sampling") {
   s["render"]["mastin_antialiasing"] = 0;
   CHECK_THROWS_AS((void)parse_scene(s), SceneError);
 }
+
+TEST_CASE("Mastin anti-aliasing at the most samples: 32 x 32 and 16 more, each weighted alike") {
+  // 1024 + 16 samples: the resolve's fixed-grid estimate holds all of them (it held 1024 once).
+  json s = aa_scene(1e-3);
+  s["render"]["width"] = 4;
+  s["render"]["height"] = 3;
+  s["camera"]["look_at"] = {0, 2.5, 14};  // the horizon across the middle row
+  const auto r = aa_prepare(s, Renderer::raster, 1024);
+  const RenderedImage image = render(r->job, r->unresolved);
+  CHECK(image.antialiased_pixels > 0);
+  for (const Vec3& e : image.pixel_error) {
+    for (const double v : e) CHECK(std::isfinite(v));
+  }
+}

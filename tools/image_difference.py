@@ -5,6 +5,19 @@ import numpy as np
 import oceanref
 
 
+def channels(path):
+    """Every channel of a render (all parts), by name, as float64 H×W arrays."""
+    out = {}
+    for part in oceanref.read_exr(path):
+        out.update({k: v.astype(np.float64) for k, v in part["channels"].items()})
+    return out
+
+
+def layer(chans, name=""):
+    """The H×W×3 R, G, B of a layer of channels(): the radiance, or e.g. "pixel_error"."""
+    return np.stack([chans[(name + "." if name else "") + c] for c in "RGB"], axis=2)
+
+
 def read(path):
     """R, G, B (H×W×3), coverage and view depth (H×W) of a render written with --aov."""
     channels = {}

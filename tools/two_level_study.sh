@@ -61,24 +61,15 @@ for o in $orders; do
   names="$names two_level_$o"
 done
 
-/usr/bin/python3 - "$work" "$names" "$size" "$threads" "$(git rev-parse --short HEAD)$(git diff --quiet HEAD || echo -dirty)" \
+PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 - "$work" "$names" "$size" "$threads" "$(git rev-parse --short HEAD)$(git diff --quiet HEAD || echo -dirty)" \
   "$(lscpu | sed -n 's/^Model name: *//p' | head -n1)" <<'EOF'
 import datetime, sys
 import numpy as np
-import OpenImageIO as oiio
+sys.path.insert(0, "tools")
+from image_difference import channels as read, layer
 
 work, names, size, threads, commit, cpu = sys.argv[1:7]
 tolerance = 0.01
-
-def read(path):
-    i = oiio.ImageInput.open(path)
-    spec = i.spec()
-    a = np.asarray(i.read_image(format="float")).reshape(spec.height, spec.width, -1)
-    i.close()
-    return {n: a[:, :, k] for k, n in enumerate(spec.channelnames)}
-
-def rgb(d, layer):
-    return np.stack([d[layer + c] for c in (".R", ".G", ".B")], axis=-1)
 
 def report(name):
     out = {}
@@ -97,13 +88,13 @@ for name in names.split():
     d = read(f"{work}/{name}.exr")
     r = report(name)
     wall, user, system = (float(x) for x in open(f"{work}/{name}.time").read().split())
-    radiance = np.stack([d["R"], d["G"], d["B"]], axis=-1)
+    radiance = layer(d)
     largest = radiance.max(axis=-1)
     sea = d["coverage"] > 0
     scale = np.where(largest > 0, largest, np.inf)
-    pixel = (rgb(d, "pixel_error").max(axis=-1) / scale)[sea]
-    lighting = (rgb(d, "lighting_error").max(axis=-1) / scale)[sea]
-    total = ((rgb(d, "pixel_error") + rgb(d, "lighting_error")).max(axis=-1) / scale)[sea]
+    pixel = (layer(d, "pixel_error").max(axis=-1) / scale)[sea]
+    lighting = (layer(d, "lighting_error").max(axis=-1) / scale)[sea]
+    total = ((layer(d, "pixel_error") + layer(d, "lighting_error")).max(axis=-1) / scale)[sea]
     reference_lit = r.get("corrected_samples", "")
     if name == "every_sample":
         reference_lit = f"{float(r['pixel_samples_mean']) * radiance.shape[0] * radiance.shape[1]:.0f} (all)"

@@ -335,7 +335,8 @@ std::function<void(std::ostream&)> add_render_command(CLI::App& app) {
       "--aov", f->aov,
       "also write the layers depth, coverage, normal.RGB (= x, y, z), x0.RGB (= x0, 0, z0), "
       "sun.RGB, sky.RGB, sea.RGB, foam.RGB, lighting_error.RGB (the estimated absolute error of "
-      "the lighting per channel; 0 for shading.accuracy fast without --lighting-error), "
+      "the lighting per channel; 0 for shading.accuracy fast without --lighting-error; with "
+      "render.pixel_tolerance at reference accuracy the bound of the two-level correction), "
       "pixel_error.RGB (the estimated absolute error of each pixel as the pixel integral: 3 "
       "standard errors of its samples' mean; 0 at 1 spp) and, with render.pixel_tolerance, "
       "samples (the samples behind each pixel)");

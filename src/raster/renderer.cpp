@@ -533,13 +533,17 @@ Vec3 mean_of(std::span<const Value> values, Vec3 Value::*field) {
   return mean;
 }
 
-// The mean of `field` over the values of an S×S grid and its bound: kPixelErrorStandardErrors
-// standard errors of the mean with the samples taken as independent (0 for one sample).
+// The mean of `field` over the values of an S×S grid (with Mastin's anti-aliasing, and its 16
+// more) and its bound: kPixelErrorStandardErrors standard errors of the mean with the samples
+// taken as independent (0 for one sample).
 template <class Value>
 PixelEstimate fixed_grid_estimate(std::span<const Value> values, Vec3 Value::*field) {
   PixelEstimate e;
   e.mean = mean_of(values, field);
-  std::array<Vec3, kMaxSamplesPerAxis * kMaxSamplesPerAxis> x;
+  std::array<Vec3, kMaxSamplesPerAxis * kMaxSamplesPerAxis +
+                       kMastinExtraSamplesPerAxis * kMastinExtraSamplesPerAxis>
+      x;
+  OCEANREF_EXPECTS(values.size() <= x.size(), "at most 32 x 32 + 16 samples of a fixed grid");
   for (std::size_t i = 0; i < values.size(); ++i) x[i] = values[i].*field;
   const Vec3 se = pixel_standard_error(std::span(x.data(), values.size()), e.mean);
   for (std::size_t c = 0; c < 3; ++c) e.error[c] = kPixelErrorStandardErrors * se[c];
@@ -1002,7 +1006,6 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
   std::atomic<long> capped{0};
   std::atomic<long> corrected{0};
   std::atomic<int> rows_done{0};
-  const int report_every = std::max(1, image.height / 50);
   // Rows in spread order (spread_order): any prefix of the rows done is a sample of the whole
   // band, so the share done is the share of the work (sky rows are cheap, sea rows are not) and
   // the time left extrapolates honestly. Each row's pixels are the same bits in any order.
@@ -1217,7 +1220,9 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     capped += row_capped;
     corrected += row_corrected;
     const int done = ++rows_done;
-    if (progress && (done % report_every == 0 || done == image.height)) {
+    // Every row: a row of converged pixels can take many seconds, and the progress off a
+    // terminal is a line every ~10 s (the callback's rate limit).
+    if (progress) {
       progress(static_cast<double>(done) / image.height);
     }
   });

@@ -149,8 +149,10 @@ struct RenderJob {
   // Also keep every sample's radiance (RenderedImage::sample_radiance; `render --samples`):
   // the fixed grid only, not with pixel_tolerance.
   bool keep_samples = false;
-  // Called with the finished share of image rows (0…1) now and then during shading, from any
-  // worker thread; for progress display only.
+  // Called with 0 when the rows start (after the frame's preparation and the raster pass), then
+  // with the finished share of the rows after each row, from any worker thread; the rows are
+  // rendered in spread order (spread_order), so the share is a sample of the work. For progress
+  // display only.
   std::function<void(double)> progress;
 };
 
