@@ -301,16 +301,10 @@ Deformation read_deformation(const PointFields& f) {
           1.0 + f.raw[static_cast<std::size_t>(Field::ddz_dz)]};
 }
 
-// How the samples of the job's pixel grids are lit: the fast rules under a two-level estimate
-// (RenderJob::lighting_correction), else the scene's accuracy.
-LightingAccuracy sample_accuracy(const RenderJob& job) {
-  return job.lighting_correction ? LightingAccuracy::fast : job.shading.accuracy;
-}
-
 // One sample of a grid with `samples_per_axis` samples per pixel axis, its lighting integrals by
-// `accuracy`.
+// `lighting`'s accuracy (frame.sample_shading, or job.shading for a two-level correction).
 SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm::dvec3& ray,
-                         int samples_per_axis, LightingAccuracy accuracy) {
+                         int samples_per_axis, const ShadingSettings& lighting) {
   const RenderJob& job = frame.job;
   const Geometry& g = frame.geometry;
   const FrameLighting& light = frame.light;
@@ -381,10 +375,8 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
     p.lighting = four_term_lighting(sh, job.sky, light, p.view, p.normal, p.position.y);
   } else {
     const SurfaceFrame surface = wind_frame(p.normal, job.ocean->spectrum.wind_direction);
-    ShadingSettings by = sh;
-    by.accuracy = accuracy;
     // The two-level estimate's lighting error is its correction's bound, not the fast rules'.
-    p.lighting = lighting_terms(by, job.sky, light, p.view, surface, p.roughness,
+    p.lighting = lighting_terms(lighting, job.sky, light, p.view, surface, p.roughness,
                                 job.estimate_fast_error && !job.lighting_correction);
   }
   if (is_ray_traced(job.renderer) && job.object_reflections && !g.object_triangles.empty()) {
@@ -519,7 +511,6 @@ struct PixelCorrection {
   // reference's estimates; +∞ where nothing estimates it (one sample of the sea, or none of the
   // level's samples on the sea while others of the pixel are).
   Vec3 error{};
-  bool known = true;  // the error estimated (not +∞)
 };
 
 // The mean of `field` over the values: Σ (1/n)·value in order from 0 (the resolve's sum).
@@ -826,6 +817,8 @@ RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
   frame.geometry = build_geometry(job, frame.fields, frame.displacement_bound, frame.filter);
   clock.lap(&RenderTimes::grid);
   frame.light = frame_lighting(job.sky, job.shading, job.lighting_correction);
+  frame.sample_shading = job.shading;
+  if (job.lighting_correction) frame.sample_shading.accuracy = LightingAccuracy::fast;
   return frame;
 }
 
@@ -899,7 +892,7 @@ long add_mastin_samples(const RenderFrame& frame, const std::vector<Fragment>& f
       const auto shade_at = [&](const Fragment& f, const SampleGrid& samples, int r, int c) {
         const glm::dvec3 ray = ray_direction(job.camera, samples.sample_x(c), samples.sample_y(r));
         return sample_value(
-            shade_sample(frame, f, ray, samples.samples_per_axis, sample_accuracy(job)));
+            shade_sample(frame, f, ray, samples.samples_per_axis, frame.sample_shading));
       };
       for (int b = 0; b < s; ++b) {
         for (int a = 0; a < s; ++a) {
@@ -1017,18 +1010,18 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     long row_evaluations = 0;
     long row_capped = 0;
     long row_corrected = 0;
-    // A sample of `samples` lit by `accuracy`, its integrals counted.
+    // A sample of `samples` lit by `lighting`'s accuracy, its integrals counted.
     const auto shade_by = [&](const Fragment& f, const SampleGrid& samples, int row, int column,
-                              LightingAccuracy accuracy) {
+                              const ShadingSettings& lighting) {
       const glm::dvec3 ray =
           ray_direction(job.camera, samples.sample_x(column), samples.sample_y(row));
-      const SampleProbe p = shade_sample(frame, f, ray, samples.samples_per_axis, accuracy);
+      const SampleProbe p = shade_sample(frame, f, ray, samples.samples_per_axis, lighting);
       if (!p.lighting.converged) ++row_unconverged;
       row_evaluations += p.lighting.evaluations;
       return p;
     };
     const auto shade = [&](const Fragment& f, const SampleGrid& samples, int row, int column) {
-      return sample_value(shade_by(f, samples, row, column, sample_accuracy(job)));
+      return sample_value(shade_by(f, samples, row, column, frame.sample_shading));
     };
     // The pixel's samples (row-major) and the next level's, which trade places at each
     // refinement; reserved at the finest level once, so that what a thread holds is what
@@ -1110,7 +1103,7 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
             const Fragment& f =
                 level > 0 ? window[at(b, a, m)]
                           : fragments[at((image_row - first_row) * s + b, column, grid.columns())];
-            const SampleProbe r = shade_by(f, samples, row, column, job.shading.accuracy);
+            const SampleProbe r = shade_by(f, samples, row, column, job.shading);
             ++row_corrected;
             for (std::size_t c = 0; c < 3; ++c) {
               d.radiance[c] = r.radiance[c] - fast.radiance[c];
@@ -1134,7 +1127,6 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
       const bool pixel_sees_sea =
           std::any_of(values.begin(), values.end(), [](const SampleValue& v) { return v.hit; });
       const bool unknown = pixel_sees_sea && (!level_sees_sea || m * m < 2);
-      out.known = !unknown;
       for (std::size_t c = 0; c < 3; ++c) {
         out.error[c] = unknown ? HUGE_VAL : e.error[c] + estimates[c];
       }
@@ -1198,7 +1190,7 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
             refine_samples();
           } else if (correction &&
                      ((b.pixel_within && level < kMaxCorrectionRefinements) ||
-                      !correction->known) &&
+                      !std::isfinite(correction->error[0])) &&
                      level < job.max_refinements) {
             refine_correction();
           } else if (can_refine) {
@@ -1330,7 +1322,7 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
           fragments[static_cast<std::size_t>(b) * static_cast<std::size_t>(grid.columns()) +
                     static_cast<std::size_t>(column)];
       const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-      SampleProbe p = shade_sample(frame, f, ray, s, job.shading.accuracy);
+      SampleProbe p = shade_sample(frame, f, ray, s, job.shading);
       p.image_x = grid.sample_x(column);
       p.image_y = grid.sample_y(row);
       out.push_back(p);

@@ -113,9 +113,9 @@ struct RenderJob {
   // with shading.accuracy reference; README, "One error budget per pixel"): every sample is shaded
   // by the fast rules (shading.sky_order, sun_order: FrameLighting's nodes), and the pixel is
   // corrected by the mean of (reference − fast) over the samples of one level of its nested grid
-  // (the S×S grid, then 3S×3S, …), the reference at shading.tolerance. The pixel's expected value
-  // is the reference's; pixel_error bounds the fast level's pixel integral, lighting_error the
-  // correction (kPixelErrorStandardErrors standard errors of its mean + the reference's own
+  // (the S×S grid, or 3S×3S where needed), the reference at shading.tolerance. The pixel's expected
+  // value is the reference's; pixel_error bounds the fast level's pixel integral, lighting_error
+  // the correction (kPixelErrorStandardErrors standard errors of its mean + the reference's own
   // estimates), and each pixel is refined (the fast level or the correction's, whichever misses
   // its share; the correction up to kMaxCorrectionRefinements) until pixel_error +
   // lighting_error ≤ pixel_tolerance × its largest channel.
@@ -308,6 +308,9 @@ struct RenderFrame {
   FrameFields fields;
   FrameGeometry geometry;
   FrameLighting light;
+  // The shading of the pixel grids' samples: job.shading, lit by the fast rules under a two-level
+  // estimate (RenderJob::lighting_correction), whose correction uses job.shading itself.
+  ShadingSettings sample_shading;
   std::optional<FootprintFilter> filter;  // RenderJob::footprint_filtering
 };
 RenderFrame prepare_frame(const RenderJob& job, const SlopeVariance& unresolved,
