@@ -180,3 +180,19 @@ TEST_CASE("two-level: the scene's keys") {
   }
   CHECK(agree >= static_cast<int>(0.9 * static_cast<double>(a.radiance.size())));
 }
+
+TEST_CASE("two-level: the correction stops at the 3S x 3S grid (kMaxCorrectionRefinements)") {
+  // With the cap at 18×18 samples a correction could go on to all 324; it stops at 6×6 (36
+  // reference samples a pixel at most), except where none of the 6×6 sees the sea.
+  // A coarse cheap level (one node) leaves wide corrections, which would refine further.
+  json s = two_level_glitter(4);
+  s["shading"]["sky_order"] = 1;
+  s["render"]["pixel_tolerance"] = 0.05;
+  s["render"]["max_samples_per_pixel"] = 324;
+  const RenderedImage image = two_level_render(s, 2);
+  long sea = 0;
+  for (const double c : image.coverage) sea += c > 0.0 ? 1 : 0;
+  MESSAGE("corrected samples " << image.corrected_samples << " over " << sea << " sea pixels");
+  CHECK(image.corrected_samples > 4 * sea);  // some corrections refined to 6×6
+  CHECK(image.corrected_samples <= 40 * sea);
+}
