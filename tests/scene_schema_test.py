@@ -45,6 +45,7 @@ CONTEXT = {
     "shading.sky_order": {"shading.accuracy": "fast"},
     "shading.sun_order": {"shading.accuracy": "fast"},
     "render.max_samples_per_pixel": {"render.pixel_tolerance": 0.01},
+    "render.pixel_pattern": {"render.pixel_tolerance": 0.01},
     "waves.choppiness": {"waves.allow_positive_choppiness": True},
     "waves.spectrum.peak_omega": {"waves.spectrum.allow_extrapolation": True},
     "waves.spectrum.alpha": {"waves.spectrum.allow_extrapolation": True},

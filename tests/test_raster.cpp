@@ -114,6 +114,49 @@ TEST_CASE("rasterizer: row bands give the fragments of one full pass, whatever t
   }
 }
 
+TEST_CASE("rasterizer: arbitrary points get the fragments a grid pass gives its samples") {
+  // The fan above with vertices on sample positions (ties) and overlapping depths: the points at
+  // every sample position of a 2×2 grid, in a scrambled order, against rasterize's fragments;
+  // a triangle behind the near plane covers no point.
+  const SampleGrid grid{9, 7, 2};
+  std::vector<ScreenVertex> v{{4.5, 3.5, 2}};
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::uint32_t> all;
+  for (std::uint32_t i = 0; i < 12; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 12.0;
+    v.push_back({4.5 + 6.0 * std::cos(a), 3.5 + 5.0 * std::sin(a), 2.0 + 0.1 * i});
+    triangles.push_back({0, i + 1, i == 11 ? 1 : i + 2});
+    all.push_back(i);
+  }
+  v.push_back({0.25, 0.25, 0.5});  // a triangle nearer than all, one vertex behind the plane
+  v.push_back({8.75, 0.25, 0.5});
+  v.push_back({4.25, 6.75, 1e-12});
+  triangles.push_back({13, 14, 15});
+  all.push_back(12);
+  std::vector<Fragment> whole(static_cast<std::size_t>(grid.columns() * grid.rows()));
+  rasterize(v, triangles, grid, 0, grid.rows(), 1e-9, whole);
+  std::vector<std::array<double, 2>> points;
+  std::vector<std::size_t> sample;
+  for (std::size_t k = 0; k < whole.size(); ++k) {
+    const std::size_t i = (k * 37) % whole.size();  // 37 is prime to 14 × 18 = 252
+    sample.push_back(i);
+    points.push_back(
+        {grid.sample_x(static_cast<int>(i % 18)), grid.sample_y(static_cast<int>(i / 18))});
+  }
+  std::vector<Fragment> at_points(points.size());
+  rasterize_points(v, triangles, all, points, 1e-9, at_points);
+  int covered = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Fragment& w = whole[sample[k]];
+    CHECK(at_points[k].triangle == w.triangle);
+    CHECK(at_points[k].depth == w.depth);
+    CHECK(at_points[k].weights == w.weights);
+    covered += w.triangle >= 0 ? 1 : 0;
+    CHECK(at_points[k].triangle != 12);
+  }
+  CHECK(covered > 100);
+}
+
 TEST_CASE("rasterizer: a triangle's sample rows, none unless strictly in front of the near plane") {
   // Rows [⌈min y·S − ½⌉, ⌊max y·S − ½⌋ + 1): the samples whose centres (r + ½)/S lie in [min y,
   // max y]. A corner on the near plane or behind it (or a NaN depth), or an x or y not finite:

@@ -213,6 +213,8 @@ std::vector<Row> reach_rows() {
       changes("render.pixel_tolerance", 0.05, kPixels),
       changes("render.max_samples_per_pixel", 9, kPixels,
               ctx(R"({"render": {"pixel_tolerance": 1e-3}})")),
+      changes("render.pixel_pattern", "sobol", kPixels,
+              ctx(R"({"render": {"pixel_tolerance": 0.05}})")),
       changes("render.footprint_filtering", true, kPixels),
       // The ray tracer on the continuous surface: other visibility at the horizon's crests,
       // other hit points. (raytrace, on the same grid, differs only in the rounding of the

@@ -7,18 +7,22 @@
 # total time; then its progress. Writes build/default_reference.exr (with --aov layers) and
 # build/default_reference.png, and prints the render's report.
 #
-#   bash tools/reference_image.sh [TOLERANCE] [WxH]     (default 0.01 and the scene's 640x360)
+#   bash tools/reference_image.sh [TOLERANCE] [WxH] [RENDER FLAGS...]
+#       default 0.01 and the scene's 640x360 ("" keeps the size); further arguments go to
+#       `oceanref render`, e.g. --set render.pixel_pattern=sobol
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 tolerance=${1:-0.01}
 size=${2:-}
+shift $(($# < 2 ? $# : 2))
 bin=build/src/oceanref
 [ -x "$bin" ] || bash tools/quickstart.sh >/dev/null
 overrides=(--set "render.pixel_tolerance=$tolerance")
 if [ -n "$size" ]; then
   overrides+=(--set "render.width=${size%x*}" --set "render.height=${size#*x}")
 fi
+overrides+=("$@")
 echo "== $bin render reference/scenes/default.json ${overrides[*]} --aov" \
   "-o build/default_reference.exr --png build/default_reference.png"
 start=$SECONDS

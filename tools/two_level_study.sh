@@ -6,13 +6,17 @@
 #                 cost measured as the fast render with --lighting-error, which lights every one
 #                 of the same samples by the reference as well;
 #   two_level_N   the two-level estimate, its samples lit by the fast rules at sky_order N and
-#                 each pixel corrected by the reference (shading.tolerance derived: 1e-3).
+#                 each pixel corrected by the reference (shading.tolerance derived: 1e-3);
+# all on the nested grid (render.pixel_pattern grid, cap 324 samples), and with SOBOL=1 (the
+# default) also on the Sobol' pattern (pixel_pattern sobol, cap 256): sobol_fast and
+# sobol_two_level_N.
 # For each: wall and CPU seconds, samples per pixel, reference-lit samples, integrand
 # evaluations, and over the sea pixels the bound's parts relative to the largest channel
 # (pixel part, lighting part: p50, p99) and the share of sea pixels whose total bound is within
 # the tolerance. Prints a Markdown table with the machine, date and commit.
 #
 #   bash tools/two_level_study.sh [WxH] [THREADS] [SKY_ORDERS]   (default 48x27 2 "4 16 64")
+#   SOBOL=0 bash tools/two_level_study.sh ...                      (the grid's rows only)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -28,15 +32,16 @@ trap 'rm -rf "$work"' EXIT
 
 # scene NAME ACCURACY [SKY_ORDER]: the default scene at the size, tolerance 0.01.
 scene() {
-  /usr/bin/python3 - "$work/$1.json" "$width" "$height" "$2" "${3:-}" <<'EOF'
+  /usr/bin/python3 - "$work/$1.json" "$width" "$height" "$2" "${3:-}" "${4:-grid}" <<'EOF'
 import json, sys
-path, width, height, accuracy, order = sys.argv[1:6]
+path, width, height, accuracy, order, pattern = sys.argv[1:7]
 s = json.load(open("reference/scenes/default.json"))
 s["shading"]["accuracy"] = accuracy
 s["shading"].pop("tolerance", None)
 if order:
     s["shading"]["sky_order"] = int(order)
-s["render"].update(width=int(width), height=int(height), pixel_tolerance=0.01)
+s["render"].update(width=int(width), height=int(height), pixel_tolerance=0.01,
+                   pixel_pattern=pattern, max_samples_per_pixel=324 if pattern == "grid" else 256)
 json.dump(s, open(path, "w"))
 EOF
 }
@@ -60,6 +65,16 @@ for o in $orders; do
   run "two_level_$o"
   names="$names two_level_$o"
 done
+if [ "${SOBOL:-1}" = 1 ]; then
+  scene sobol_fast fast "" sobol
+  run sobol_fast
+  names="$names sobol_fast"
+  for o in $orders; do
+    scene "sobol_two_level_$o" reference "$o" sobol
+    run "sobol_two_level_$o"
+    names="$names sobol_two_level_$o"
+  done
+fi
 
 PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 - "$work" "$names" "$size" "$threads" "$(git rev-parse --short HEAD)$(git diff --quiet HEAD || echo -dirty)" \
   "$(lscpu | sed -n 's/^Model name: *//p' | head -n1)" <<'EOF'
@@ -78,7 +93,8 @@ def report(name):
         out[key] = value
     return out
 
-print(f"Default scene at {size}, render.pixel_tolerance {tolerance}, cap 324 samples, "
+print(f"Default scene at {size}, render.pixel_tolerance {tolerance}, cap 324 samples (the "
+      f"Sobol' pattern's rows: 256), "
       f"{threads} threads; {cpu}, {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, commit {commit}, "
       f"`bash tools/two_level_study.sh {size} {threads}`.\n")
 print("| design | wall s | CPU s | samples/pixel | reference-lit samples | integrand evaluations "
@@ -98,7 +114,7 @@ for name in names.split():
     reference_lit = r.get("corrected_samples", "")
     if name == "every_sample":
         reference_lit = f"{float(r['pixel_samples_mean']) * radiance.shape[0] * radiance.shape[1]:.0f} (all)"
-    if name == "fast":
+    if name.endswith("fast"):
         lighting_text = "not bounded"
         within = "–"
     elif name == "every_sample":  # a cost measurement: its pixels are the fast ones

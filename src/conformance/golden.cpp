@@ -204,9 +204,8 @@ GoldenReport run(const std::filesystem::path& root, const GoldenOptions& options
       if (converged) {
         const PixelErrorSummary p = summarize_pixel_error(r.image);
         entry["pixel_tolerance"] = scene.image.pixel_tolerance;
-        const int cap =
-            refined_samples_per_axis(scene.image.samples_per_axis, scene.image.max_refinements);
-        entry["max_samples_per_pixel"] = cap * cap;
+        entry["max_samples_per_pixel"] = adaptive_samples(
+            scene.image.pixel_pattern, scene.image.samples_per_axis, scene.image.max_refinements);
         entry["pixel_samples_mean"] = p.mean_samples;
         entry["capped_pixels"] = p.capped_pixels;
         entry["pixel_error_p50_relative"] = p.p50_relative;

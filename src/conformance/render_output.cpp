@@ -368,9 +368,9 @@ std::string sampling_text(const RenderJob& job) {
   const int s = job.samples_per_axis;
   std::string text = std::to_string(s * s) + " spp";
   if (job.pixel_tolerance > 0.0) {
-    const int n = refined_samples_per_axis(s, job.max_refinements);
     text += " refined to a tolerance of " + format_number(job.pixel_tolerance) + " up to " +
-            std::to_string(n * n);
+            std::to_string(adaptive_samples(job.pixel_pattern, s, job.max_refinements));
+    if (job.pixel_pattern == PixelPattern::sobol) text += " (Sobol')";
   }
   if (job.footprint_filtering) text += ", footprint-filtered";
   if (job.renderer == Renderer::raytrace) text += ", ray traced";
@@ -438,9 +438,11 @@ MemoryEstimate render_memory_estimate(const Scene& scene, const RenderOutputOpti
        {"per-sample radiance (--samples: " + area + " x render.samples_per_pixel)",
         options.keep_samples ? samples * kSampleBytes : 0.0},
        {"adaptive refinement (render.max_samples_per_pixel per thread)",
-        adaptive(scene) ? std::max(options.threads, 1) *
-                              refinement_bytes(axis, im.max_refinements, two_level_lighting(scene))
-                        : 0.0}}};
+        adaptive(scene)
+            ? std::max(options.threads, 1) *
+                  refinement_bytes(adaptive_samples(im.pixel_pattern, axis, im.max_refinements),
+                                   two_level_lighting(scene))
+            : 0.0}}};
 }
 
 namespace {

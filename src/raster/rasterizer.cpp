@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/check.h"
 
@@ -31,6 +32,58 @@ bool owns_boundary(Point a, Point b) {
   const double dx = b.x - a.x;
   const double dy = b.y - a.y;
   return (dy == 0.0 && dx > 0.0) || dy < 0.0;
+}
+
+// A screen triangle wound so that its interior has positive edge functions (vertex k of the
+// winding is the triangle's vertex order[k]), with its edges' ownership by the top-left rule.
+struct CoverageTriangle {
+  Point a, b, c;
+  double za, zb, zc;  // view depths
+  double area;        // twice the screen area, > 0
+  std::array<int, 3> order;
+  bool own_ab, own_bc, own_ca;
+};
+
+// The triangle ready for coverage tests; none when its screen area is 0 or not finite.
+std::optional<CoverageTriangle> coverage_triangle(const ScreenVertex& v0, const ScreenVertex& v1,
+                                                  const ScreenVertex& v2) {
+  const Point p[3] = {{v0.x, v0.y}, {v1.x, v1.y}, {v2.x, v2.y}};
+  const double z[3] = {v0.z, v1.z, v2.z};
+  std::array<int, 3> order = {0, 1, 2};
+  const double area = edge_function(p[0], p[1], p[2]);
+  if (area == 0.0 || !std::isfinite(area)) return std::nullopt;
+  if (area < 0.0) std::swap(order[1], order[2]);
+  CoverageTriangle t{p[order[0]], p[order[1]],     p[order[2]], z[order[0]], z[order[1]],
+                     z[order[2]], std::fabs(area), order,       false,       false,
+                     false};
+  t.own_ab = owns_boundary(t.a, t.b);
+  t.own_bc = owns_boundary(t.b, t.c);
+  t.own_ca = owns_boundary(t.c, t.a);
+  return t;
+}
+
+// Triangle `index` into fragment f when it covers q (edge functions, the top-left rule on its
+// edges) nearer than f's triangle (a tie keeps f's): perspective-correct weights, the screen
+// barycentrics divided by depth and renormalized.
+void cover(const CoverageTriangle& t, std::size_t index, Point q, Fragment& f) {
+  const double e0 = edge_function(t.b, t.c, q);  // weight of a
+  const double e1 = edge_function(t.c, t.a, q);  // weight of b
+  const double e2 = edge_function(t.a, t.b, q);  // weight of c
+  if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) return;
+  if ((e0 == 0.0 && !t.own_bc) || (e1 == 0.0 && !t.own_ca) || (e2 == 0.0 && !t.own_ab)) return;
+  const double la = e0 / t.area / t.za;
+  const double lb = e1 / t.area / t.zb;
+  const double lc = e2 / t.area / t.zc;
+  const double sum = la + lb + lc;
+  const double depth = 1.0 / sum;
+  if (f.triangle >= 0 && !(depth < f.depth)) return;
+  f.depth = depth;
+  f.triangle = static_cast<std::int64_t>(index);
+  std::array<double, 3> w{};
+  w[static_cast<std::size_t>(t.order[0])] = la / sum;
+  w[static_cast<std::size_t>(t.order[1])] = lb / sum;
+  w[static_cast<std::size_t>(t.order[2])] = lc / sum;
+  f.weights = w;
 }
 }  // namespace
 
@@ -80,18 +133,9 @@ void rasterize_indexed(const std::vector<ScreenVertex>& vertices,
     const int row_begin = std::max(static_cast<int>(std::fmax(lowest, first_row)), first_row);
     const int row_end = std::min(static_cast<int>(std::fmin(highest, last_row)), last_row);
     if (row_begin >= row_end) continue;
-    Point p[3] = {{v0.x, v0.y}, {v1.x, v1.y}, {v2.x, v2.y}};
-    double z[3] = {v0.z, v1.z, v2.z};
-    int order[3] = {0, 1, 2};
-    // Wind so that the interior has positive edge functions.
-    const double area = edge_function(p[0], p[1], p[2]);
-    if (area == 0.0 || !std::isfinite(area)) continue;
-    if (area < 0.0) std::swap(order[1], order[2]);
-    const Point a = p[order[0]], b = p[order[1]], c = p[order[2]];
-    const double za = z[order[0]], zb = z[order[1]], zc = z[order[2]];
-    const double signed_area = std::fabs(area);
-    const bool own_ab = owns_boundary(a, b), own_bc = owns_boundary(b, c),
-               own_ca = owns_boundary(c, a);
+    const std::optional<CoverageTriangle> tri = coverage_triangle(v0, v1, v2);
+    if (!tri) continue;
+    const Point a = tri->a, b = tri->b, c = tri->c;
     const Point edges[3][2] = {{a, b}, {b, c}, {c, a}};
     for (int row = row_begin; row < row_end; ++row) {
       const double sy = grid.sample_y(row);
@@ -118,28 +162,9 @@ void rasterize_indexed(const std::vector<ScreenVertex>& vertices,
       const int col_end = static_cast<int>(
           std::fmax(std::fmin(last_column, std::ceil(x_hi * s - 0.5) + 1.0), lowest_column));
       for (int col = col_begin; col < col_end; ++col) {
-        const Point q{grid.sample_x(col), sy};
-        const double e0 = edge_function(b, c, q);  // weight of a
-        const double e1 = edge_function(c, a, q);  // weight of b
-        const double e2 = edge_function(a, b, q);  // weight of c
-        if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) continue;
-        if ((e0 == 0.0 && !own_bc) || (e1 == 0.0 && !own_ca) || (e2 == 0.0 && !own_ab)) continue;
-        // Perspective-correct weights: screen barycentrics divided by depth, renormalized.
-        const double la = e0 / signed_area / za;
-        const double lb = e1 / signed_area / zb;
-        const double lc = e2 / signed_area / zc;
-        const double sum = la + lb + lc;
-        const double depth = 1.0 / sum;
-        Fragment& f = fragments[static_cast<std::size_t>(row - fragment_row) * width +
-                                static_cast<std::size_t>(col - first_column)];
-        if (f.triangle >= 0 && !(depth < f.depth)) continue;
-        f.depth = depth;
-        f.triangle = static_cast<std::int64_t>(t);
-        std::array<double, 3> w{};
-        w[static_cast<std::size_t>(order[0])] = la / sum;
-        w[static_cast<std::size_t>(order[1])] = lb / sum;
-        w[static_cast<std::size_t>(order[2])] = lc / sum;
-        f.weights = w;
+        cover(*tri, t, Point{grid.sample_x(col), sy},
+              fragments[static_cast<std::size_t>(row - fragment_row) * width +
+                        static_cast<std::size_t>(col - first_column)]);
       }
     }
   }
@@ -167,6 +192,31 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
   rasterize_indexed(
       vertices, triangles, subset.size(), [&](std::size_t i) { return subset[i]; }, grid, first_row,
       last_row, near, fragments, fragment_row, window);
+}
+
+void rasterize_points(const std::vector<ScreenVertex>& vertices,
+                      const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                      const std::vector<std::uint32_t>& subset,
+                      std::span<const std::array<double, 2>> points, double near,
+                      std::span<Fragment> fragments) {
+  OCEANREF_EXPECTS(points.size() == fragments.size(), "a fragment per point");
+  for (std::size_t i = 0; i < subset.size(); ++i) {
+    OCEANREF_EXPECTS(i == 0 || subset[i - 1] < subset[i], "triangle indices in ascending order");
+    const std::size_t t = subset[i];
+    OCEANREF_EXPECTS(t < triangles.size() && triangles[t][0] < vertices.size() &&
+                         triangles[t][1] < vertices.size() && triangles[t][2] < vertices.size(),
+                     "triangle " + std::to_string(t) + " of " + std::to_string(triangles.size()) +
+                         ", its vertices among the " + std::to_string(vertices.size()) + " given");
+    const ScreenVertex& v0 = vertices[triangles[t][0]];
+    const ScreenVertex& v1 = vertices[triangles[t][1]];
+    const ScreenVertex& v2 = vertices[triangles[t][2]];
+    if (!(v0.z > near && v1.z > near && v2.z > near)) continue;  // as sample_rows_of
+    const std::optional<CoverageTriangle> tri = coverage_triangle(v0, v1, v2);
+    if (!tri) continue;
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      cover(*tri, t, Point{points[p][0], points[p][1]}, fragments[p]);
+    }
+  }
 }
 
 std::pair<double, double> sample_rows_of(const ScreenVertex& a, const ScreenVertex& b,

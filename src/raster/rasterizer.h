@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -68,6 +69,16 @@ void rasterize(const std::vector<ScreenVertex>& vertices,
                const std::vector<std::uint32_t>& subset, const SampleGrid& grid, int first_row,
                int last_row, double near, std::vector<Fragment>& fragments, int fragment_row = 0,
                FragmentColumns window = {});
+
+// The fragments of arbitrary image positions [pixels] (adaptive pixels' sample patterns,
+// raster/pixel_pattern.h) against the triangles triangles[i], i in `subset` (ascending), by the
+// same rules as rasterize: a point at a grid's sample position gets the fragment rasterize gives
+// that sample. `fragments` (one per point) start empty (triangle −1).
+void rasterize_points(const std::vector<ScreenVertex>& vertices,
+                      const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                      const std::vector<std::uint32_t>& subset,
+                      std::span<const std::array<double, 2>> points, double near,
+                      std::span<Fragment> fragments);
 
 // The sample rows [first, last) a triangle can cover (first ≥ last when none: a corner on or
 // behind the near plane, its depth NaN, or its x or y not finite); rasterize writes no sample

@@ -20,6 +20,7 @@
 #include "core/memory.h"
 #include "core/parallel.h"
 #include "raster/footprint.h"
+#include "raster/pixel_pattern.h"
 #include "shading/ocean_brdf.h"
 #include "shading/ocean_lighting.h"
 #include "spectrum/moments.h"
@@ -272,6 +273,22 @@ void trace_fragments(const RenderFrame& frame, const SampleGrid& grid, int first
   });
 }
 
+// The fragments of arbitrary image positions [pixels] by ray tracing, as trace_fragments.
+void trace_points(const RenderFrame& frame, std::span<const std::array<double, 2>> points,
+                  std::span<Fragment> out) {
+  const RenderJob& job = frame.job;
+  if (frame.geometry.triangles.empty()) return;
+  const std::optional<SurfaceTrace> surface = job.renderer == Renderer::raytrace_surface
+                                                  ? std::optional(surface_trace(frame))
+                                                  : std::nullopt;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const glm::dvec3 d = ray_direction(job.camera, points[i][0], points[i][1]);
+    const RayHit hit = trace_scene(frame, surface ? &*surface : nullptr, job.camera.position, d);
+    if (hit.triangle < 0) continue;
+    out[i] = {project(job.camera, job.camera.position + hit.t * d).z, hit.triangle, hit.weights};
+  }
+}
+
 // The unit normal of an object triangle, facing against `ray` (two-sided).
 Vec3 object_normal(const Geometry& g, std::size_t triangle, const glm::dvec3& ray) {
   const auto& t = g.triangles[triangle];
@@ -301,10 +318,11 @@ Deformation read_deformation(const PointFields& f) {
           1.0 + f.raw[static_cast<std::size_t>(Field::ddz_dz)]};
 }
 
-// One sample of a grid with `samples_per_axis` samples per pixel axis, its lighting integrals by
-// `lighting`'s accuracy (frame.sample_shading, or job.shading for a two-level correction).
+// One sample, its cell `cell` pixels wide (1/S of a grid's; footprint filtering reads the waves
+// filtered to it), its lighting integrals by `lighting`'s accuracy (frame.sample_shading, or
+// job.shading for a two-level correction).
 SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm::dvec3& ray,
-                         int samples_per_axis, const ShadingSettings& lighting) {
+                         double cell, const ShadingSettings& lighting) {
   const RenderJob& job = frame.job;
   const Geometry& g = frame.geometry;
   const FrameLighting& light = frame.light;
@@ -349,8 +367,7 @@ SampleProbe shade_sample(const RenderFrame& frame, const Fragment& f, const glm:
       screen[v] = g.screen[t[v]];
       base[v] = g.grid.base[t[v]];
     }
-    p.footprint = sample_footprint(base_derivatives(screen, base, f.weights),
-                                   1.0 / static_cast<double>(samples_per_axis));
+    p.footprint = sample_footprint(base_derivatives(screen, base, f.weights), cell);
     p.fields = filtered_fields_at(ocean, frame.fields.grids, frame.fields.evolved, *frame.filter,
                                   p.x0.x, p.x0.y, p.footprint, sh.interpolation, sh.normals);
     const SlopeVariance v = footprint_slope_variance(*frame.filter, p.footprint);
@@ -573,6 +590,66 @@ PixelEstimate grid_estimate(std::span<const Value> values, int n, int samples_pe
                                : nested_grid_estimate(values, n, field);
 }
 
+// The Sobol' pattern's estimate from values stored point-major (point i of replicate r at
+// i·kPixelReplicates + r): the mean of the first `points` points of the first `replicates`
+// replicates (a prefix of the values: replicates < kPixelReplicates only with one point) and
+// its bound, kPixelErrorStandardErrors standard errors from the spread of the replicates' means.
+template <class Value>
+PixelEstimate replicate_estimate(std::span<const Value> values, int replicates, int points,
+                                 Vec3 Value::*field) {
+  OCEANREF_EXPECTS(replicates == kPixelReplicates || (replicates < kPixelReplicates && points == 1),
+                   "a prefix of the point-major values");
+  const std::size_t count = static_cast<std::size_t>(replicates) * static_cast<std::size_t>(points);
+  PixelEstimate e;
+  e.mean = mean_of(values.first(count), field);
+  std::array<Vec3, kPixelReplicates> means{};
+  const double per_point = 1.0 / points;
+  for (std::size_t i = 0; i < count; ++i) {
+    Vec3& m = means[i % kPixelReplicates];
+    for (std::size_t c = 0; c < 3; ++c) m[c] += per_point * (values[i].*field)[c];
+  }
+  const Vec3 se =
+      pixel_standard_error(std::span(means.data(), static_cast<std::size_t>(replicates)), e.mean);
+  for (std::size_t c = 0; c < 3; ++c) e.error[c] = kPixelErrorStandardErrors * se[c];
+  return e;
+}
+
+// What the reference changes of a sample lit by the fast rules: reference − fast.
+SampleCorrection sample_correction(const SampleValue& fast, const SampleProbe& reference) {
+  SampleCorrection d;
+  for (std::size_t c = 0; c < 3; ++c) {
+    d.radiance[c] = reference.radiance[c] - fast.radiance[c];
+    d.sun[c] = reference.lighting.sun[c] - fast.sun[c];
+    d.sky[c] = reference.lighting.sky[c] - fast.sky[c];
+    d.sea[c] = reference.lighting.sea[c] - fast.sea[c];
+  }
+  d.estimate = reference.lighting_error;
+  return d;
+}
+
+// Whether any of the samples sees the sea.
+bool sees_sea(std::span<const SampleValue> values) {
+  return std::any_of(values.begin(), values.end(), [](const SampleValue& v) { return v.hit; });
+}
+
+// The correction of a pixel from one level's sample corrections (0 where a sample does not see
+// the sea) and their estimate: unknown (+∞) where the pixel sees the sea but none of the level's
+// samples does, or the level has one sample.
+PixelCorrection pixel_correction(std::span<const SampleCorrection> level, bool level_sees_sea,
+                                 bool pixel_sees_sea, const PixelEstimate& e) {
+  PixelCorrection out;
+  out.radiance = e.mean;
+  out.sun = mean_of(level, &SampleCorrection::sun);
+  out.sky = mean_of(level, &SampleCorrection::sky);
+  out.sea = mean_of(level, &SampleCorrection::sea);
+  const Vec3 estimates = mean_of(level, &SampleCorrection::estimate);
+  const bool unknown = pixel_sees_sea && (!level_sees_sea || level.size() < 2);
+  for (std::size_t c = 0; c < 3; ++c) {
+    out.error[c] = unknown ? HUGE_VAL : e.error[c] + estimates[c];
+  }
+  return out;
+}
+
 // The pixel from its samples and their estimate, box-filtered: Σ (1/n)·value in sample order
 // from 0 (as mean_of); depth, normal and x0 the means over the sea samples. With a correction
 // (RenderJob::lighting_correction), `estimate` is the corrected pixel, the terms are corrected
@@ -698,11 +775,25 @@ int refined_samples_per_axis(int samples_per_axis, int refinements) {
   return n;
 }
 
-double refinement_bytes(int samples_per_axis, int refinements, bool lighting_correction) {
-  const double n = refined_samples_per_axis(samples_per_axis, refinements);
-  const double finest = n * n;
+int sobol_first_points(int samples_per_axis) {
+  int n = 1;
+  while (kPixelReplicates * n < samples_per_axis * samples_per_axis) n *= 2;
+  return n;
+}
+
+int adaptive_samples(PixelPattern pattern, int samples_per_axis, int refinements) {
+  if (pattern == PixelPattern::sobol) {
+    return kPixelReplicates * (sobol_first_points(samples_per_axis) << refinements);
+  }
+  const int n = refined_samples_per_axis(samples_per_axis, refinements);
+  return n * n;
+}
+
+double refinement_bytes(int samples, bool lighting_correction) {
   const double correction = lighting_correction ? kCorrectionSampleBytes : 0.0;
-  return finest * (static_cast<double>(sizeof(Fragment) + 2 * kResolvedSampleBytes) + correction);
+  return samples * (static_cast<double>(sizeof(Fragment) + 2 * kResolvedSampleBytes +
+                                        sizeof(std::array<double, 2>)) +
+                    correction);
 }
 
 double luminance_contrast(const Vec3& a, const Vec3& b) {
@@ -892,7 +983,7 @@ long add_mastin_samples(const RenderFrame& frame, const std::vector<Fragment>& f
       const auto shade_at = [&](const Fragment& f, const SampleGrid& samples, int r, int c) {
         const glm::dvec3 ray = ray_direction(job.camera, samples.sample_x(c), samples.sample_y(r));
         return sample_value(
-            shade_sample(frame, f, ray, samples.samples_per_axis, frame.sample_shading));
+            shade_sample(frame, f, ray, 1.0 / samples.samples_per_axis, frame.sample_shading));
       };
       for (int b = 0; b < s; ++b) {
         for (int a = 0; a < s; ++a) {
@@ -976,6 +1067,15 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     image.x0 = pixel_buffer("x0");
   }
   const bool adaptive = job.pixel_tolerance > 0.0;
+  const bool sobol = adaptive && job.pixel_pattern == PixelPattern::sobol;
+  const int sobol_first = sobol_first_points(s);
+  // The two-level correction's finest level, and whether level l's samples are among a pixel's
+  // after r refinements (the grid's level l is its S·3^l grid; the Sobol' pattern's, its first
+  // sobol_correction_samples(l)).
+  const int max_correction_level = sobol ? kMaxSobolCorrectionLevel : kMaxCorrectionRefinements;
+  const auto correction_level_fits = [&](int l, int r) {
+    return sobol ? sobol_correction_samples(l) <= kPixelReplicates * (sobol_first << r) : l <= r;
+  };
   OCEANREF_EXPECTS(adaptive || !job.lighting_correction,
                    "the two-level lighting corrects the pixels of adaptive sampling");
   OCEANREF_EXPECTS(!(adaptive && job.keep_samples),
@@ -1010,15 +1110,21 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     long row_evaluations = 0;
     long row_capped = 0;
     long row_corrected = 0;
-    // A sample of `samples` lit by `lighting`'s accuracy, its integrals counted.
-    const auto shade_by = [&](const Fragment& f, const SampleGrid& samples, int row, int column,
-                              const ShadingSettings& lighting) {
-      const glm::dvec3 ray =
-          ray_direction(job.camera, samples.sample_x(column), samples.sample_y(row));
-      const SampleProbe p = shade_sample(frame, f, ray, samples.samples_per_axis, lighting);
+    // A sample at image position `at` [pixels], its cell `cell` pixels wide, lit by
+    // `lighting`'s accuracy, its integrals counted.
+    const auto shade_point = [&](const Fragment& f, const std::array<double, 2>& at, double cell,
+                                 const ShadingSettings& lighting) {
+      const glm::dvec3 ray = ray_direction(job.camera, at[0], at[1]);
+      const SampleProbe p = shade_sample(frame, f, ray, cell, lighting);
       if (!p.lighting.converged) ++row_unconverged;
       row_evaluations += p.lighting.evaluations;
       return p;
+    };
+    // Sample (row, column) of `samples`.
+    const auto shade_by = [&](const Fragment& f, const SampleGrid& samples, int row, int column,
+                              const ShadingSettings& lighting) {
+      return shade_point(f, {samples.sample_x(column), samples.sample_y(row)},
+                         1.0 / samples.samples_per_axis, lighting);
     };
     const auto shade = [&](const Fragment& f, const SampleGrid& samples, int row, int column) {
       return sample_value(shade_by(f, samples, row, column, frame.sample_shading));
@@ -1030,13 +1136,15 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     std::vector<SampleValue> finer;
     std::vector<Fragment> window;
     std::vector<SampleCorrection> corrections;  // lighting_correction: the level's samples
+    std::vector<std::array<double, 2>> points;  // the Sobol' pattern's positions [pixels]
     if (adaptive) {
       const auto finest =
-          static_cast<std::size_t>(refined_samples_per_axis(s, job.max_refinements));
-      values.reserve(finest * finest);
-      finer.reserve(finest * finest);
-      window.reserve(finest * finest);
-      if (job.lighting_correction) corrections.reserve(finest * finest);
+          static_cast<std::size_t>(adaptive_samples(job.pixel_pattern, s, job.max_refinements));
+      values.reserve(finest);
+      finer.reserve(finest);
+      window.reserve(finest);
+      if (sobol) points.reserve(finest);
+      if (job.lighting_correction) corrections.reserve(finest);
     }
     std::vector<std::uint32_t> subset;                    // the triangles that reach the pixel
     bool subset_of_pixel = false;                         // subset holds the current pixel's
@@ -1047,14 +1155,7 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     // The fragments of pixel (x, image_row) at `samples` (m×m per pixel) into `window`: its
     // footprint rasterized from `subset` (the same fragments as a whole raster pass at that
     // grid), or its rays traced.
-    const auto pixel_fragments = [&](int x, int image_row, const SampleGrid& samples) {
-      const int m = samples.samples_per_axis;
-      window.assign(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), Fragment{});
-      if (is_ray_traced(job.renderer)) {
-        trace_fragments(frame, samples, image_row * m, image_row * m + m, window, image_row * m,
-                        FragmentColumns{x * m, m}, 1);
-        return;
-      }
+    const auto pixel_subset = [&](int x, int image_row) -> const std::vector<std::uint32_t>& {
       if (!subset_of_pixel) {
         subset.clear();
         for (const std::uint32_t t :
@@ -1063,8 +1164,45 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
         }
         subset_of_pixel = true;
       }
-      rasterize(g.screen, g.triangles, subset, samples, image_row * m, image_row * m + m,
-                job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
+      return subset;
+    };
+    const auto pixel_fragments = [&](int x, int image_row, const SampleGrid& samples) {
+      const int m = samples.samples_per_axis;
+      window.assign(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), Fragment{});
+      if (is_ray_traced(job.renderer)) {
+        trace_fragments(frame, samples, image_row * m, image_row * m + m, window, image_row * m,
+                        FragmentColumns{x * m, m}, 1);
+        return;
+      }
+      rasterize(g.screen, g.triangles, pixel_subset(x, image_row), samples, image_row * m,
+                image_row * m + m, job.grid.near, window, image_row * m, FragmentColumns{x * m, m});
+    };
+    // The Sobol' pattern: points [from, to) of every replicate of pixel (x, image_row) appended
+    // point-major to `points`, their fragments to `window` and their values to `values`, each
+    // sample's cell the pixel's area shared by the pixel's samples after the addition.
+    const auto add_points = [&](int x, int image_row, int from, int to) {
+      const std::size_t start = points.size();
+      for (int i = from; i < to; ++i) {
+        for (int r = 0; r < kPixelReplicates; ++r) {
+          const std::array<double, 2> u = scrambled_sobol_point(
+              pixel_replicate_key(x, image_row, r), static_cast<std::uint32_t>(i));
+          points.push_back({x + u[0], image_row + u[1]});
+        }
+      }
+      window.resize(points.size(), Fragment{});
+      const std::span<const std::array<double, 2>> added = std::span(points).subspan(start);
+      const std::span<Fragment> fragments_added = std::span(window).subspan(start);
+      if (is_ray_traced(job.renderer)) {
+        trace_points(frame, added, fragments_added);
+      } else {
+        rasterize_points(g.screen, g.triangles, pixel_subset(x, image_row), added, job.grid.near,
+                         fragments_added);
+      }
+      const double cell = 1.0 / std::sqrt(static_cast<double>(points.size()));
+      for (std::size_t j = start; j < points.size(); ++j) {
+        values.push_back(
+            sample_value(shade_point(window[j], points[j], cell, frame.sample_shading)));
+      }
     };
     // The n×n samples of pixel (x, image_row) refined to 3n×3n: the n×n are the centres of its
     // 3×3 cells, the others shaded from their fragments.
@@ -1095,42 +1233,48 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
       for (int b = 0; b < m; ++b) {
         for (int a = 0; a < m; ++a) {
           const SampleValue& fast = values[at(b * step + step / 2, a * step + step / 2, n)];
-          SampleCorrection d;
-          if (fast.hit) {
-            level_sees_sea = true;
-            const int row = image_row * m + b;
-            const int column = x * m + a;
-            const Fragment& f =
-                level > 0 ? window[at(b, a, m)]
-                          : fragments[at((image_row - first_row) * s + b, column, grid.columns())];
-            const SampleProbe r = shade_by(f, samples, row, column, job.shading);
-            ++row_corrected;
-            for (std::size_t c = 0; c < 3; ++c) {
-              d.radiance[c] = r.radiance[c] - fast.radiance[c];
-              d.sun[c] = r.lighting.sun[c] - fast.sun[c];
-              d.sky[c] = r.lighting.sky[c] - fast.sky[c];
-              d.sea[c] = r.lighting.sea[c] - fast.sea[c];
-            }
-            d.estimate = r.lighting_error;
+          if (!fast.hit) {
+            corrections.emplace_back();
+            continue;
           }
-          corrections.push_back(d);
+          level_sees_sea = true;
+          const int row = image_row * m + b;
+          const int column = x * m + a;
+          const Fragment& f =
+              level > 0 ? window[at(b, a, m)]
+                        : fragments[at((image_row - first_row) * s + b, column, grid.columns())];
+          ++row_corrected;
+          corrections.push_back(
+              sample_correction(fast, shade_by(f, samples, row, column, job.shading)));
         }
       }
       const std::span<const SampleCorrection> level_values(corrections);
-      const PixelEstimate e = grid_estimate(level_values, m, s, &SampleCorrection::radiance);
-      PixelCorrection out;
-      out.radiance = e.mean;
-      out.sun = mean_of(level_values, &SampleCorrection::sun);
-      out.sky = mean_of(level_values, &SampleCorrection::sky);
-      out.sea = mean_of(level_values, &SampleCorrection::sea);
-      const Vec3 estimates = mean_of(level_values, &SampleCorrection::estimate);
-      const bool pixel_sees_sea =
-          std::any_of(values.begin(), values.end(), [](const SampleValue& v) { return v.hit; });
-      const bool unknown = pixel_sees_sea && (!level_sees_sea || m * m < 2);
-      for (std::size_t c = 0; c < 3; ++c) {
-        out.error[c] = unknown ? HUGE_VAL : e.error[c] + estimates[c];
+      return pixel_correction(level_values, level_sees_sea, sees_sea(values),
+                              grid_estimate(level_values, m, s, &SampleCorrection::radiance));
+    };
+    // The same for the Sobol' pattern: level l's samples are the first sobol_correction_samples(l)
+    // of the values (point-major: the first point of as many replicates, or the first points of
+    // all); the corrections of a coarser level are kept (its samples are the finer level's first).
+    const auto correct_sobol = [&](int level) {
+      const int samples = sobol_correction_samples(level);
+      const int replicates = std::min(samples, kPixelReplicates);
+      const int level_points = samples / replicates;
+      const auto count = static_cast<std::size_t>(samples);
+      const double cell = 1.0 / std::sqrt(static_cast<double>(count));
+      for (std::size_t j = corrections.size(); j < count; ++j) {
+        if (!values[j].hit) {
+          corrections.emplace_back();
+          continue;
+        }
+        ++row_corrected;
+        corrections.push_back(
+            sample_correction(values[j], shade_point(window[j], points[j], cell, job.shading)));
       }
-      return out;
+      const std::span<const SampleCorrection> level_values(corrections);
+      const std::span<const SampleValue> all(values);
+      return pixel_correction(
+          level_values.first(count), sees_sea(all.first(count)), sees_sea(all),
+          replicate_estimate(level_values, replicates, level_points, &SampleCorrection::radiance));
     };
     for (int x = 0; x < image.width; ++x) {
       const std::size_t pixel =
@@ -1138,25 +1282,35 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
           static_cast<std::size_t>(x);
       values.clear();
       subset_of_pixel = false;
-      for (int b = 0; b < s; ++b) {
-        for (int a = 0; a < s; ++a) {
-          const int band_row = y * s + b;
-          const int row = first_row * s + band_row;  // of the image's sample grid
-          const int column = x * s + a;
-          const std::size_t i = at(band_row, column, grid.columns());
-          values.push_back(shade(fragments[i], grid, row, column));
-          if (job.keep_samples) image.sample_radiance[i] = values.back().radiance;
+      const int image_row = first_row + y;
+      if (sobol) {
+        points.clear();
+        window.clear();
+        corrections.clear();
+        add_points(x, image_row, 0, sobol_first);
+      } else {
+        for (int b = 0; b < s; ++b) {
+          for (int a = 0; a < s; ++a) {
+            const int band_row = y * s + b;
+            const int row = first_row * s + band_row;  // of the image's sample grid
+            const int column = x * s + a;
+            const std::size_t i = at(band_row, column, grid.columns());
+            values.push_back(shade(fragments[i], grid, row, column));
+            if (job.keep_samples) image.sample_radiance[i] = values.back().radiance;
+          }
         }
       }
+      // n: the grid's samples per axis, or the Sobol' pattern's points per replicate.
       const auto estimate_of = [&](int n) {
-        return grid_estimate(std::span<const SampleValue>(values), n, s, &SampleValue::radiance);
+        const std::span<const SampleValue> all(values);
+        return sobol ? replicate_estimate(all, kPixelReplicates, n, &SampleValue::radiance)
+                     : grid_estimate(all, n, s, &SampleValue::radiance);
       };
-      PixelEstimate estimate = estimate_of(s);
+      PixelEstimate estimate = estimate_of(sobol ? sobol_first : s);
       std::optional<PixelCorrection> correction;
       if (adaptive) {
-        const int image_row = first_row + y;
         int refinements = 0;
-        int n = s;       // samples per axis
+        int n = sobol ? sobol_first : s;
         int level = -1;  // of the correction (lighting_correction)
         const auto corrected_estimate = [&] {
           PixelEstimate e = estimate;
@@ -1166,15 +1320,20 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
           return e;
         };
         const auto refine_samples = [&] {
-          refine(x, image_row, n);
-          n *= 3;
+          if (sobol) {
+            add_points(x, image_row, n, 2 * n);
+            n *= 2;
+          } else {
+            refine(x, image_row, n);
+            n *= 3;
+          }
           ++refinements;
           estimate = estimate_of(n);
         };
         const auto refine_correction = [&] {
-          if (level == refinements) refine_samples();
+          if (!correction_level_fits(level + 1, refinements)) refine_samples();
           ++level;
-          correction = correct(x, image_row, level, n);
+          correction = sobol ? correct_sobol(level) : correct(x, image_row, level, n);
         };
         if (job.lighting_correction) refine_correction();
         // Until the bound meets the tolerance (one sample estimates nothing: refined at least
@@ -1189,9 +1348,9 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
           if (can_refine && (!correction || b.pixel_over_half || values.size() < 2)) {
             refine_samples();
           } else if (correction &&
-                     ((b.pixel_within && level < kMaxCorrectionRefinements) ||
+                     ((b.pixel_within && level < max_correction_level) ||
                       !std::isfinite(correction->error[0])) &&
-                     level < job.max_refinements) {
+                     correction_level_fits(level + 1, job.max_refinements)) {
             refine_correction();
           } else if (can_refine) {
             refine_samples();
@@ -1322,7 +1481,7 @@ std::vector<SampleProbe> probe_pixel(const RenderJob& job, const SlopeVariance& 
           fragments[static_cast<std::size_t>(b) * static_cast<std::size_t>(grid.columns()) +
                     static_cast<std::size_t>(column)];
       const glm::dvec3 ray = ray_direction(job.camera, grid.sample_x(column), grid.sample_y(row));
-      SampleProbe p = shade_sample(frame, f, ray, s, job.shading);
+      SampleProbe p = shade_sample(frame, f, ray, 1.0 / s, job.shading);
       p.image_x = grid.sample_x(column);
       p.image_y = grid.sample_y(row);
       out.push_back(p);

@@ -53,6 +53,34 @@ inline constexpr int kTwoLevelSkyOrder = 16;
 // then nothing estimates the correction, and only those few samples are lit again.)
 inline constexpr int kMaxCorrectionRefinements = 1;
 
+// Where an adaptive pixel's samples lie (`render.pixel_pattern`): the nested grid (S×S, whose
+// cells are split 3×3 at each refinement; the standard error from the spread of its nine
+// interleaved grids) or Owen-scrambled Sobol' points (raster/pixel_pattern.h) in
+// kPixelReplicates independent replicates of N points each, N doubled at each refinement (the
+// standard error from the spread of the replicates' means).
+enum class PixelPattern { grid, sobol };
+inline constexpr std::array<Choice<PixelPattern>, 2> kPixelPatterns{{
+    {PixelPattern::grid, "grid"},
+    {PixelPattern::sobol, "sobol"},
+}};
+// The Sobol' pattern's replicates per pixel: 15 degrees of freedom for the standard error (with
+// 8, a pixel that stops as soon as its estimate meets the tolerance is outside its bound too
+// often: reference/ACCURACY.md, "Converged pixels").
+inline constexpr int kPixelReplicates = 16;
+// The Sobol' pattern's two-level correction at level l: its first 4·2^l samples, the first point
+// of that many replicates or the first points of all 16 (sobol_correction_samples); the finest
+// level 3, 32 reference samples (the grid's finest at S = 2 has 36).
+inline constexpr int kMaxSobolCorrectionLevel = 3;
+inline int sobol_correction_samples(int level) {
+  return 4 << level;
+}
+// The Sobol' pattern's points per replicate before refinement: the fewest N (a power of 2) with
+// kPixelReplicates·N ≥ S².
+int sobol_first_points(int samples_per_axis);
+// The samples of an adaptive pixel after `refinements` refinements: (S·3^r)², or
+// kPixelReplicates · sobol_first_points(S) · 2^r.
+int adaptive_samples(PixelPattern pattern, int samples_per_axis, int refinements);
+
 // Which renderer decides what a sample sees (`render --renderer`): the scanline rasterizer
 // (raster/rasterizer.h) or Mastin's height-field ray tracer (trace/height_field_tracer.h), both
 // on the same displaced projected grid, or the ray tracer against the continuous surface the
@@ -108,7 +136,8 @@ struct RenderJob {
   // The stopping rule reads the pixel's own samples only: any thread count, band or tile gives
   // the same bits. 0: the fixed S×S grid (no refinement).
   double pixel_tolerance = 0.0;
-  int max_refinements = 0;  // S·3^max_refinements ≤ kMaxAdaptiveSamplesPerAxis
+  int max_refinements = 0;  // adaptive_samples(pixel_pattern, S, max_refinements) at the cap
+  PixelPattern pixel_pattern = PixelPattern::grid;
   // The two-level estimate of adaptive sampling with reference lighting (`render.pixel_tolerance`
   // with shading.accuracy reference; README, "One error budget per pixel"): every sample is shaded
   // by the fast rules (shading.sky_order, sun_order: FrameLighting's nodes), and the pixel is
@@ -218,11 +247,12 @@ inline constexpr std::size_t kResolvedSampleBytes = 208;
 // The bytes the two-level estimate keeps of one sample's correction (reference − fast of the
 // radiance and the three terms, and the reference's estimate).
 inline constexpr std::size_t kCorrectionSampleBytes = 5 * sizeof(Vec3);
-// The scratch memory of one thread's adaptive refinement from S×S samples up to
-// n = S·3^refinements per axis: two sample buffers (a level and the next, trading places), one
-// fragment buffer and with the two-level lighting (RenderJob::lighting_correction) one buffer of
-// the samples' corrections, each reserved for the finest level's n² [bytes].
-double refinement_bytes(int samples_per_axis, int refinements, bool lighting_correction);
+// The scratch memory of one thread's adaptive refinement up to `samples` per pixel (the cap,
+// adaptive_samples): two sample buffers (a level and the next, trading places), one fragment
+// buffer, the Sobol' pattern's positions and with the two-level lighting
+// (RenderJob::lighting_correction) one buffer of the samples' corrections, each reserved for the
+// finest level [bytes].
+double refinement_bytes(int samples, bool lighting_correction);
 
 // The standard error of the mean of a pixel's samples, per channel:
 // √(Σᵢ (xᵢ − mean)² / (n (n − 1))), summed in sample order; 0 for n < 2. The samples are those of

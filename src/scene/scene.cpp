@@ -123,6 +123,7 @@ const std::vector<std::string>& scene_key_paths() {
       "render.samples_per_pixel",
       "render.pixel_tolerance",
       "render.max_samples_per_pixel",
+      "render.pixel_pattern",
       "render.footprint_filtering",
       "render.mastin_antialiasing",
       "render.renderer",
@@ -622,38 +623,58 @@ std::vector<ObjectSettings> parse_objects(const Section& top) {
   return objects;
 }
 
-// render.pixel_tolerance and its cap render.max_samples_per_pixel, (S·3^r)² for r refinements
-// of the S×S grid (renderer.h).
+// render.pixel_tolerance, its pattern render.pixel_pattern and its cap
+// render.max_samples_per_pixel, adaptive_samples(pattern, S, r) for r ≥ 1 refinements (renderer.h).
 void parse_adaptive_sampling(const Section& render, ImageSettings& im) {
   const int s = im.samples_per_axis;
-  std::vector<int> caps;  // the valid caps, (S·3^r)² for r ≥ 1
-  for (int n = 3 * s; n <= kMaxAdaptiveSamplesPerAxis; n *= 3) caps.push_back(n * n);
   if (!render.has("pixel_tolerance")) {
-    if (render.has("max_samples_per_pixel")) {
-      throw SceneError("render.max_samples_per_pixel",
-                       "applies with render.pixel_tolerance only (adaptive sampling)");
+    for (const char* key : {"max_samples_per_pixel", "pixel_pattern"}) {
+      if (render.has(key)) {
+        throw SceneError(std::string("render.") + key,
+                         "applies with render.pixel_tolerance only (adaptive sampling)");
+      }
     }
     return;
   }
   im.pixel_tolerance = render.number("pixel_tolerance", 0.0, kMinPixelTolerance, 1.0);
-  // The default cap: the largest valid one up to the fixed grid's most samples (1024; the first
-  // valid one when none is that small). There is always one: 3S ≤ 3·kMaxSamplesPerAxis ≤ 243.
-  int fallback = caps.front();
-  for (const int c : caps) {
-    if (c <= kMaxSamplesPerAxis * kMaxSamplesPerAxis) fallback = c;
+  im.pixel_pattern = choice(render, "pixel_pattern", kPixelPatterns, "grid");
+  std::vector<int> caps;  // the valid caps, r ≥ 1, up to the grid's finest
+  constexpr int kMostSamples = kMaxAdaptiveSamplesPerAxis * kMaxAdaptiveSamplesPerAxis;
+  for (int r = 1; adaptive_samples(im.pixel_pattern, s, r) <= kMostSamples; ++r) {
+    caps.push_back(adaptive_samples(im.pixel_pattern, s, r));
   }
-  const int cap = render.integer("max_samples_per_pixel", fallback, 0,
-                                 kMaxAdaptiveSamplesPerAxis * kMaxAdaptiveSamplesPerAxis);
+  // The default cap: the grid's largest up to the fixed grid's most samples (1024; its first
+  // when none is that small: there is always one, 3S ≤ 3·kMaxSamplesPerAxis ≤ 243), and the
+  // Sobol' pattern's largest up to the grid's default (the same cost at most; its first when none
+  // is that small).
+  const auto largest_cap = [&](PixelPattern pattern, int most) {
+    int fallback = adaptive_samples(pattern, s, 1);
+    for (int r = 1; adaptive_samples(pattern, s, r) <= most; ++r) {
+      fallback = adaptive_samples(pattern, s, r);
+    }
+    return fallback;
+  };
+  const int grid_fallback =
+      largest_cap(PixelPattern::grid, kMaxSamplesPerAxis * kMaxSamplesPerAxis);
+  const int fallback = im.pixel_pattern == PixelPattern::grid
+                           ? grid_fallback
+                           : largest_cap(PixelPattern::sobol, grid_fallback);
+  const int cap = render.integer("max_samples_per_pixel", fallback, 0, kMostSamples);
   const auto found = std::find(caps.begin(), caps.end(), cap);
   if (found == caps.end()) {
     std::string valid;
     for (const int c : caps) valid += (valid.empty() ? "" : ", ") + std::to_string(c);
+    const std::string form =
+        im.pixel_pattern == PixelPattern::grid
+            ? "(S*3^r)^2 for r >= 1 refinements of the S x S grid"
+            : std::to_string(kPixelReplicates) + " replicates x N*2^r points for r >= 1 " +
+                  "doublings of the first N = " + std::to_string(sobol_first_points(s));
     throw SceneError("render.max_samples_per_pixel",
-                     "must be (S*3^r)^2 for r >= 1 refinements of the S x S grid of "
-                     "render.samples_per_pixel " +
-                         std::to_string(s * s) + " and at most " +
-                         std::to_string(kMaxAdaptiveSamplesPerAxis * kMaxAdaptiveSamplesPerAxis) +
-                         ": one of " + valid + "; got " + std::to_string(cap));
+                     "must be " + form + " of render.samples_per_pixel " + std::to_string(s * s) +
+                         " (render.pixel_pattern " +
+                         std::string(choice_name(kPixelPatterns, im.pixel_pattern)) +
+                         ") and at most " + std::to_string(kMostSamples) + ": one of " + valid +
+                         "; got " + std::to_string(cap));
   }
   im.max_refinements = static_cast<int>(found - caps.begin()) + 1;
 }
@@ -1264,6 +1285,7 @@ RenderJob scene_render_job(const Scene& scene, const Ocean& ocean, int threads) 
   job.samples_per_axis = scene.image.samples_per_axis;
   job.pixel_tolerance = scene.image.pixel_tolerance;
   job.max_refinements = scene.image.max_refinements;
+  job.pixel_pattern = scene.image.pixel_pattern;
   job.lighting_correction = two_level_lighting(scene);
   job.footprint_filtering = scene.image.footprint_filtering;
   job.renderer = scene.image.renderer;
