@@ -588,7 +588,7 @@ unset FAKE_FFMPEG_ARGS
 
 # Adaptive sampling (render.pixel_tolerance): the samples behind the pixels and the capped ones
 # reported; a cap below what the tolerance needs warns on stderr; the samples layer with --aov.
-sed 's/"samples_per_pixel": 4}/"samples_per_pixel": 4, "pixel_tolerance": 0.001, "max_samples_per_pixel": 36}/' \
+sed 's/"samples_per_pixel": 4}/"samples_per_pixel": 4, "pixel_tolerance": 0.001, "pixel_pattern": "grid", "max_samples_per_pixel": 36}/' \
   "$tmp/render.json" >"$tmp/adaptive.json"
 expect 0 '^capped_pixels,[1-9]' render "$tmp/adaptive.json" -o "$tmp/adaptive.exr" --aov --threads 2
 grep -q '^pixel_samples_max,36$' "$tmp/out" || fail "adaptive render: pixel_samples_max is not 36"

@@ -1468,7 +1468,7 @@ def render_fields_acf_flags():
         # Adaptive sampling: the samples behind the pixels (the samples layer) and the capped ones.
         adaptive_path = os.path.join(tmp, "adaptive.exr")
         adaptive = report("render", scene_file("adaptive", pixel_tolerance=0.1,
-                                               max_samples_per_pixel=36),
+                                               pixel_pattern="grid", max_samples_per_pixel=36),
                           "-o", adaptive_path, "--aov")
         per_pixel = read_layers(adaptive_path)["samples"].astype(np.float64)
         close(adaptive["pixel_samples_mean"], per_pixel.mean(), 1e-12, "render: pixel_samples_mean")

@@ -44,7 +44,8 @@ BASE = {"seed": 1, "waves": {"resolution": 8, "cascades": {"sizes": [50]}},
 CONTEXT = {
     "shading.sky_order": {"shading.accuracy": "fast"},
     "shading.sun_order": {"shading.accuracy": "fast"},
-    "render.max_samples_per_pixel": {"render.pixel_tolerance": 0.01},
+    # The schema's bounds, 9 and 59049, are caps of the nested grid from 1 spp.
+    "render.max_samples_per_pixel": {"render.pixel_tolerance": 0.01, "render.pixel_pattern": "grid"},
     "render.pixel_pattern": {"render.pixel_tolerance": 0.01},
     "waves.choppiness": {"waves.allow_positive_choppiness": True},
     "waves.spectrum.peak_omega": {"waves.spectrum.allow_extrapolation": True},

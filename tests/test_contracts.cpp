@@ -321,6 +321,7 @@ TEST_CASE(
   s["render"]["width"] = 24;
   s["render"]["height"] = 16;
   s["render"]["max_samples_per_pixel"] = 36;
+  s["render"]["pixel_pattern"] = "grid";
   s["grid"] = {{"columns", 128}, {"rows", 128}, {"margin", 0.15}};
   write_json(scene_path, s);
   GoldenOptions options;

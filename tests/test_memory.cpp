@@ -156,14 +156,19 @@ TEST_CASE(
     FAIL("no adaptive refinement item");
     return -1.0;
   };
-  const double per_sample = static_cast<double>(sizeof(Fragment) + 2 * kResolvedSampleBytes);
+  // Each sample also has its position (the Sobol' pattern's points).
+  const double per_sample =
+      static_cast<double>(sizeof(Fragment) + 2 * kResolvedSampleBytes + 2 * sizeof(double));
   const double corrected = per_sample + static_cast<double>(kCorrectionSampleBytes);
-  CHECK(refinement_item(R"(, "pixel_tolerance": 0.01, "max_samples_per_pixel": 324)") ==
+  constexpr const char* grid = R"(, "pixel_tolerance": 0.01, "pixel_pattern": "grid")";
+  CHECK(refinement_item((std::string(grid) + R"(, "max_samples_per_pixel": 324)").c_str()) ==
         3 * 18 * 18 * corrected);
-  CHECK(refinement_item(R"(, "pixel_tolerance": 0.01, "max_samples_per_pixel": 36)") ==
+  CHECK(refinement_item((std::string(grid) + R"(, "max_samples_per_pixel": 36)").c_str()) ==
         3 * 6 * 6 * corrected);
-  CHECK(refinement_item(R"(, "pixel_tolerance": 0.01, "max_samples_per_pixel": 36)", "fast") ==
-        3 * 6 * 6 * per_sample);
+  CHECK(refinement_item((std::string(grid) + R"(, "max_samples_per_pixel": 36)").c_str(),
+                        "fast") == 3 * 6 * 6 * per_sample);
+  // The Sobol' pattern (the default): its cap, 256 for S = 2.
+  CHECK(refinement_item(R"(, "pixel_tolerance": 0.01)") == 3 * 256 * corrected);
   CHECK(refinement_item("") == 0.0);  // fixed samples: no refinement
 }
 

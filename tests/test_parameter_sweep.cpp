@@ -164,7 +164,10 @@ void enable_key(json& scene, const std::string& path) {
   if (path == "shading.tolerance") {
     scene["shading"] = {{"accuracy", "reference"}};
   }
-  if (path == "render.max_samples_per_pixel") scene["render"]["pixel_tolerance"] = 0.5;
+  if (path == "render.max_samples_per_pixel") {  // the grid's caps include the range's least, 9
+    scene["render"]["pixel_tolerance"] = 0.5;
+    scene["render"]["pixel_pattern"] = "grid";
+  }
   if (path.rfind("waves.tiling.", 0) == 0) {
     waves["synthesis"] = "tiling_and_blending";
     if (path == "waves.tiling.flow_direction_deg") waves["tiling"]["flow"] = "uniform";

@@ -36,7 +36,12 @@ json two_level_glitter(int samples_per_pixel) {
   return s;
 }
 
-RenderedImage two_level_render(const json& s, int threads) {
+// The cases below are the nested grid's (its levels are the fixed grid's samples) unless the scene
+// names a pattern.
+RenderedImage two_level_render(json s, int threads) {
+  if (s["render"].contains("pixel_tolerance") && !s["render"].contains("pixel_pattern")) {
+    s["render"]["pixel_pattern"] = "grid";
+  }
   RenderOutputOptions options;
   options.threads = threads;
   options.aov = true;
@@ -195,4 +200,38 @@ TEST_CASE("two-level: the correction stops at the 3S x 3S grid (kMaxCorrectionRe
   MESSAGE("corrected samples " << image.corrected_samples << " over " << sea << " sea pixels");
   CHECK(image.corrected_samples > 4 * sea);  // some corrections refined to 6×6
   CHECK(image.corrected_samples <= 40 * sea);
+}
+
+TEST_CASE("two-level (Sobol'): each level's samples lead the next's, each lit by the reference once") {
+  // A coarse cheap level (one node) leaves wide corrections, so many pixels refine theirs to
+  // level 3, the first 32 samples. Kept from level to level, a pixel lights at most 32 of its sea
+  // samples by the reference (lit again at each level it would be 4 + 8 + 16 + 32).
+  json s = two_level_glitter(4);
+  s["shading"]["sky_order"] = 1;
+  s["render"]["pixel_tolerance"] = 0.05;
+  s["render"]["pixel_pattern"] = "sobol";
+  s["render"]["max_samples_per_pixel"] = 256;
+  const RenderedImage image = two_level_render(s, 2);
+  double most = 0.0;  // Σ min(32, the pixel's sea samples)
+  long sea = 0;
+  long capped = 0;
+  for (std::size_t i = 0; i < image.radiance.size(); ++i) {
+    most += std::min(32.0, std::round(image.coverage[i] * image.pixel_samples[i]));
+    sea += image.coverage[i] > 0.0 ? 1 : 0;
+    bool meets = true;
+    for (std::size_t c = 0; c < 3; ++c) {
+      meets = meets && image.pixel_error[i][c] + image.lighting_error[i][c] <=
+                           0.05 * largest_channel(image.radiance[i]);
+    }
+    if (!meets) ++capped;
+    if (image.pixel_samples[i] < 256.0) CHECK(meets);
+  }
+  MESSAGE("corrected samples " << image.corrected_samples << " over " << sea
+                               << " sea pixels; at most " << most);
+  CHECK(image.capped_pixels == capped);
+  CHECK(image.corrected_samples > 8 * sea);  // corrections refined past the first 4 samples
+  CHECK(static_cast<double>(image.corrected_samples) <= most);
+  const RenderedImage one = two_level_render(s, 1);
+  CHECK(one.radiance == image.radiance);
+  CHECK(one.lighting_error == image.lighting_error);
 }

@@ -2,8 +2,9 @@
 # Error versus cost of the pixel integral (reference/ACCURACY.md, "Converged pixels"): the
 # default scene at a reduced size with fast lighting (the same lighting in every render, so only
 # the pixel integral differs), rendered with the fixed grid at 1, 4, 16 and 64 spp, footprint-filtered at 1 and 4 spp, and with
-# adaptive sampling at several tolerances, each compared with a 1024-spp render of the same
-# scene. Per render: wall-clock seconds and samples per pixel (the cost), the relative error
+# adaptive sampling at several tolerances on each pixel pattern (render.pixel_pattern: the nested
+# grid, cap 324, "adaptive_*"; the Sobol' pattern, cap 256, "sobol_*"; each also at a higher
+# cap), each compared with a 1024-spp render of the same scene. Per render: wall-clock seconds and samples per pixel (the cost), the relative error
 # against 1024 spp (median, p99 over pixels, the largest channel per pixel), and the share of
 # pixels within the reported pixel_error (alone, and plus the 1024-spp render's own estimate);
 # over the pixels the sea covers, the RMS error relative to the mean and the light relative to
@@ -25,7 +26,7 @@
 #                               tools/build.sh when missing; not built when this is set)
 #   PIXEL_CONVERGENCE_OUT=DIR   write the CSV and SVG to DIR instead of reference/ (trial runs)
 #
-# About 4 minutes at 160x90 on 2 cores (the 1024-spp render is most of it).
+# About 6 minutes at 160x90 on 2 cores (the 1024-spp render and the high caps are most of it).
 set -euo pipefail
 # The caller's paths are relative to the caller's directory: resolved before the cd.
 bin=${OCEANREF_BIN:+$(realpath -m -- "$OCEANREF_BIN")}
@@ -69,11 +70,11 @@ runs = {"fixed_1": {"samples_per_pixel": 1}, "fixed_4": {"samples_per_pixel": 4}
         "fixed_16": {"samples_per_pixel": 16}, "fixed_64": {"samples_per_pixel": 64},
         "footprint_1": {"samples_per_pixel": 1, "footprint_filtering": True},
         "footprint_4": {"samples_per_pixel": 4, "footprint_filtering": True},
-        "adaptive_0.1": {"samples_per_pixel": 4, "pixel_tolerance": 0.1},
-        "adaptive_0.03": {"samples_per_pixel": 4, "pixel_tolerance": 0.03},
-        "adaptive_0.01": {"samples_per_pixel": 4, "pixel_tolerance": 0.01},
+        "adaptive_0.1": {"samples_per_pixel": 4, "pixel_tolerance": 0.1, "pixel_pattern": "grid"},
+        "adaptive_0.03": {"samples_per_pixel": 4, "pixel_tolerance": 0.03, "pixel_pattern": "grid"},
+        "adaptive_0.01": {"samples_per_pixel": 4, "pixel_tolerance": 0.01, "pixel_pattern": "grid"},
         "adaptive_0.01_cap2916": {"samples_per_pixel": 4, "pixel_tolerance": 0.01,
-                                  "max_samples_per_pixel": 2916},
+                                  "pixel_pattern": "grid", "max_samples_per_pixel": 2916},
         "sobol_0.1": {"samples_per_pixel": 4, "pixel_tolerance": 0.1, "pixel_pattern": "sobol",
                       "max_samples_per_pixel": 256},
         "sobol_0.03": {"samples_per_pixel": 4, "pixel_tolerance": 0.03, "pixel_pattern": "sobol",
@@ -93,7 +94,7 @@ EOF
 for name in $names; do
   start=$(date +%s%N)
   "$bin" render "$tmp/$name.json" -o "$tmp/$name.exr" --aov --threads "$threads" \
-    >"$tmp/$name.out" 2>/dev/null
+    >"$tmp/$name.out" 2>"$tmp/$name.err" || { cat "$tmp/$name.err" >&2; exit 1; }
   echo "$name $((($(date +%s%N) - start) / 1000000))" >>"$tmp/times"  # milliseconds
 done
 

@@ -77,13 +77,13 @@ if [ "${SOBOL:-1}" = 1 ]; then
 fi
 
 PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 - "$work" "$names" "$size" "$threads" "$(git rev-parse --short HEAD)$(git diff --quiet HEAD || echo -dirty)" \
-  "$(lscpu | sed -n 's/^Model name: *//p' | head -n1)" <<'EOF'
+  "$(lscpu | sed -n 's/^Model name: *//p' | head -n1)" "$orders" <<'EOF'
 import datetime, sys
 import numpy as np
 sys.path.insert(0, "tools")
 from image_difference import channels as read, layer
 
-work, names, size, threads, commit, cpu = sys.argv[1:7]
+work, names, size, threads, commit, cpu, orders = sys.argv[1:8]
 tolerance = 0.01
 
 def report(name):
@@ -96,7 +96,7 @@ def report(name):
 print(f"Default scene at {size}, render.pixel_tolerance {tolerance}, cap 324 samples (the "
       f"Sobol' pattern's rows: 256), "
       f"{threads} threads; {cpu}, {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, commit {commit}, "
-      f"`bash tools/two_level_study.sh {size} {threads}`.\n")
+      f"`bash tools/two_level_study.sh {size} {threads} \"{orders}\"`.\n")
 print("| design | wall s | CPU s | samples/pixel | reference-lit samples | integrand evaluations "
       "| pixel part p50 / p99 | lighting part p50 / p99 | sea pixels within 1% |")
 print("|---|---:|---:|---:|---:|---:|---|---|---:|")

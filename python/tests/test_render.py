@@ -69,7 +69,7 @@ def test_spp_and_aov(tiny):
     assert b["pixel_error"].shape == (24, 40, 3) and (b["pixel_error"] > 0).mean() > 0.5
     assert "pixel_samples" not in b
     # Adaptive sampling: the samples behind each pixel (one refinement at least from 1 spp).
-    adaptive = dict(TINY, render=dict(TINY["render"], pixel_tolerance=0.05,
+    adaptive = dict(TINY, render=dict(TINY["render"], pixel_tolerance=0.05, pixel_pattern="grid",
                                       max_samples_per_pixel=81))
     c = oceanref.render(adaptive, threads=2, aov=True)
     assert set(np.unique(c["pixel_samples"])) <= {9.0, 81.0} and (c["pixel_samples"] == 9).any()

@@ -146,8 +146,9 @@ void print_gerstner_loops(std::ostream& out, const Scene& scene) {
 // renderer takes the rows in spread order (spread_order), so any share done is a sample of the
 // work, sky and sea alike. On a terminal a bar; elsewhere a line every kProgressLineSeconds. A
 // render estimated at kProgressLineSeconds or more prints its estimated total once its first
-// rows are done; times count from the first call (the renderer's share 0, when its rows start:
-// the frame's preparation is not their cost). Called from worker threads: written under a lock.
+// kProgressEstimateShare of rows are done (the first row alone, sky at the top, says nothing);
+// times count from the first call (the renderer's share 0, when its rows start: the frame's
+// preparation is not their cost). Called from worker threads: written under a lock.
 std::function<void(double)> progress_reporter() {
   struct State {
     std::mutex mutex;
@@ -169,7 +170,7 @@ std::function<void(double)> progress_reporter() {
     state->shown = share;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - state->start).count();
-    if (!state->estimated && share > 0.0 && share < 1.0) {
+    if (!state->estimated && share >= kProgressEstimateShare && share < 1.0) {
       state->estimated = true;
       if (elapsed / share >= kProgressLineSeconds) {
         std::cerr << (state->terminal ? "\r" : "")

@@ -75,6 +75,9 @@ std::string progress_estimate_text(double share, double elapsed);
 // Off a terminal, a progress line every this many seconds; the estimated total is printed for
 // renders estimated at least this long.
 inline constexpr double kProgressLineSeconds = 10.0;
+// The share of a render's rows after which it prints its estimated total (the rows in spread
+// order: a sample of the image, its costly sea rows and cheap sky rows alike).
+inline constexpr double kProgressEstimateShare = 0.02;
 // The process's peak resident memory so far (bytes; getrusage), for the render report.
 double peak_memory_bytes();
 // The help text of --max-memory.

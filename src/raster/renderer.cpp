@@ -1045,7 +1045,10 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
   image.displacement_bound = frame.displacement_bound;
   const SampleGrid grid{job.camera.width, job.camera.height, job.samples_per_axis};
   const int s = job.samples_per_axis;
-  const std::vector<Fragment> fragments = raster_pass(frame, grid, first_row * s, last_row * s);
+  // The band's S×S fragments (none for the Sobol' pattern: its pixels find their own).
+  const bool sobol = job.pixel_tolerance > 0.0 && job.pixel_pattern == PixelPattern::sobol;
+  const std::vector<Fragment> fragments =
+      sobol ? std::vector<Fragment>{} : raster_pass(frame, grid, first_row * s, last_row * s);
   clock.lap(&RenderTimes::raster);
   const auto pixels =
       static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
@@ -1067,7 +1070,6 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     image.x0 = pixel_buffer("x0");
   }
   const bool adaptive = job.pixel_tolerance > 0.0;
-  const bool sobol = adaptive && job.pixel_pattern == PixelPattern::sobol;
   const int sobol_first = sobol_first_points(s);
   // The two-level correction's finest level, and whether level l's samples are among a pixel's
   // after r refinements (the grid's level l is its S·3^l grid; the Sobol' pattern's, its first
@@ -1075,6 +1077,13 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
   const int max_correction_level = sobol ? kMaxSobolCorrectionLevel : kMaxCorrectionRefinements;
   const auto correction_level_fits = [&](int l, int r) {
     return sobol ? sobol_correction_samples(l) <= kPixelReplicates * (sobol_first << r) : l <= r;
+  };
+  // The Sobol' pattern's cell of sample j [pixels]: the pixel shared by the samples of the
+  // refinement that added it (footprint filtering; its correction reads the same footprint).
+  const auto sobol_cell = [&](std::size_t j) {
+    std::size_t samples = static_cast<std::size_t>(kPixelReplicates * sobol_first);
+    while (samples <= j) samples *= 2;
+    return 1.0 / std::sqrt(static_cast<double>(samples));
   };
   OCEANREF_EXPECTS(adaptive || !job.lighting_correction,
                    "the two-level lighting corrects the pixels of adaptive sampling");
@@ -1179,7 +1188,7 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
     };
     // The Sobol' pattern: points [from, to) of every replicate of pixel (x, image_row) appended
     // point-major to `points`, their fragments to `window` and their values to `values`, each
-    // sample's cell the pixel's area shared by the pixel's samples after the addition.
+    // sample's cell the pixel shared by the pixel's samples after the addition (sobol_cell).
     const auto add_points = [&](int x, int image_row, int from, int to) {
       const std::size_t start = points.size();
       for (int i = from; i < to; ++i) {
@@ -1198,10 +1207,9 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
         rasterize_points(g.screen, g.triangles, pixel_subset(x, image_row), added, job.grid.near,
                          fragments_added);
       }
-      const double cell = 1.0 / std::sqrt(static_cast<double>(points.size()));
       for (std::size_t j = start; j < points.size(); ++j) {
         values.push_back(
-            sample_value(shade_point(window[j], points[j], cell, frame.sample_shading)));
+            sample_value(shade_point(window[j], points[j], sobol_cell(j), frame.sample_shading)));
       }
     };
     // The n×n samples of pixel (x, image_row) refined to 3n×3n: the n×n are the centres of its
@@ -1260,15 +1268,14 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
       const int replicates = std::min(samples, kPixelReplicates);
       const int level_points = samples / replicates;
       const auto count = static_cast<std::size_t>(samples);
-      const double cell = 1.0 / std::sqrt(static_cast<double>(count));
       for (std::size_t j = corrections.size(); j < count; ++j) {
         if (!values[j].hit) {
           corrections.emplace_back();
           continue;
         }
         ++row_corrected;
-        corrections.push_back(
-            sample_correction(values[j], shade_point(window[j], points[j], cell, job.shading)));
+        corrections.push_back(sample_correction(
+            values[j], shade_point(window[j], points[j], sobol_cell(j), job.shading)));
       }
       const std::span<const SampleCorrection> level_values(corrections);
       const std::span<const SampleValue> all(values);

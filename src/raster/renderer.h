@@ -137,7 +137,7 @@ struct RenderJob {
   // the same bits. 0: the fixed S×S grid (no refinement).
   double pixel_tolerance = 0.0;
   int max_refinements = 0;  // adaptive_samples(pixel_pattern, S, max_refinements) at the cap
-  PixelPattern pixel_pattern = PixelPattern::grid;
+  PixelPattern pixel_pattern = PixelPattern::sobol;
   // The two-level estimate of adaptive sampling with reference lighting (`render.pixel_tolerance`
   // with shading.accuracy reference; README, "One error budget per pixel"): every sample is shaded
   // by the fast rules (shading.sky_order, sun_order: FrameLighting's nodes), and the pixel is

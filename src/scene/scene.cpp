@@ -637,7 +637,7 @@ void parse_adaptive_sampling(const Section& render, ImageSettings& im) {
     return;
   }
   im.pixel_tolerance = render.number("pixel_tolerance", 0.0, kMinPixelTolerance, 1.0);
-  im.pixel_pattern = choice(render, "pixel_pattern", kPixelPatterns, "grid");
+  im.pixel_pattern = choice(render, "pixel_pattern", kPixelPatterns, "sobol");
   std::vector<int> caps;  // the valid caps, r ≥ 1, up to the grid's finest
   constexpr int kMostSamples = kMaxAdaptiveSamplesPerAxis * kMaxAdaptiveSamplesPerAxis;
   for (int r = 1; adaptive_samples(im.pixel_pattern, s, r) <= kMostSamples; ++r) {

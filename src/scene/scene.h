@@ -51,9 +51,9 @@ struct ImageSettings {
   // Adaptive sampling (RenderJob::pixel_tolerance, max_refinements); 0: the fixed S×S grid.
   double pixel_tolerance = 0.0;
   int max_refinements = 0;
-  PixelPattern pixel_pattern = PixelPattern::grid;  // RenderJob::pixel_pattern
-  bool footprint_filtering = false;                 // RenderJob::footprint_filtering
-  double mastin_antialiasing = 0.0;                 // RenderJob::antialiasing_contrast (0: off)
+  PixelPattern pixel_pattern = PixelPattern::sobol;  // RenderJob::pixel_pattern
+  bool footprint_filtering = false;                  // RenderJob::footprint_filtering
+  double mastin_antialiasing = 0.0;                  // RenderJob::antialiasing_contrast (0: off)
   Renderer renderer = Renderer::raster;  // RenderJob::renderer (`render --renderer` overrides)
   double surface_tolerance = kDefaultSurfaceTolerance;  // RenderJob::surface_tolerance [pixels]
   double tone_key = 0.18;                               // Reinhard key a for the PNG preview
