@@ -1307,17 +1307,17 @@ RenderedImage render_rows_with(const RenderFrame& frame, int first_row, int last
           }
         }
       }
-      // n: the grid's samples per axis, or the Sobol' pattern's points per replicate.
-      const auto estimate_of = [&](int n) {
+      // The grid's samples per axis, or the Sobol' pattern's points per replicate.
+      int n = sobol ? sobol_first : s;
+      const auto estimate_of = [&](int level_n) {
         const std::span<const SampleValue> all(values);
-        return sobol ? replicate_estimate(all, kPixelReplicates, n, &SampleValue::radiance)
-                     : grid_estimate(all, n, s, &SampleValue::radiance);
+        return sobol ? replicate_estimate(all, kPixelReplicates, level_n, &SampleValue::radiance)
+                     : grid_estimate(all, level_n, s, &SampleValue::radiance);
       };
-      PixelEstimate estimate = estimate_of(sobol ? sobol_first : s);
+      PixelEstimate estimate = estimate_of(n);
       std::optional<PixelCorrection> correction;
       if (adaptive) {
         int refinements = 0;
-        int n = sobol ? sobol_first : s;
         int level = -1;  // of the correction (lighting_correction)
         const auto corrected_estimate = [&] {
           PixelEstimate e = estimate;

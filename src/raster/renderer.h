@@ -47,7 +47,8 @@ inline constexpr double kTwoLevelLightingShare = 0.1;
 // nodes (~35 µs a sample) leave a correction several times narrower than the fast mode's 4×4
 // (reference/ACCURACY.md, "One error budget per pixel").
 inline constexpr int kTwoLevelSkyOrder = 16;
-// The finest level of the two-level correction: the 3S×3S grid ((3S)² reference samples). A
+// The finest level of the two-level correction on the grid pattern: the 3S×3S grid ((3S)²
+// reference samples; the Sobol' pattern's: kMaxSobolCorrectionLevel). A
 // level finer still costs about 0.4 s of CPU per pixel at S = 2; a pixel whose bound needs it is
 // capped. (Finer only while none of the level's samples sees the sea and others of the pixel do:
 // then nothing estimates the correction, and only those few samples are lit again.)
@@ -130,23 +131,25 @@ struct RenderJob {
   FoamSequence foam;
   int samples_per_axis = 2;  // S: S×S stratified samples per pixel, 1…kMaxSamplesPerAxis
   // Adaptive sampling (`render.pixel_tolerance`): a pixel whose estimated error exceeds
-  // pixel_tolerance × its largest channel is refined by nested stratification — its S×S grid
-  // becomes 3S×3S, whose cell centres are the S×S samples (kept), then 9S×9S, … — until the
-  // estimate meets the tolerance or the grid has S·3^max_refinements samples per axis (the cap).
-  // The stopping rule reads the pixel's own samples only: any thread count, band or tile gives
-  // the same bits. 0: the fixed S×S grid (no refinement).
+  // pixel_tolerance × its largest channel is refined — in pixel_pattern: the Sobol' pattern's
+  // replicates doubled, or the nested grid's S×S becoming 3S×3S, whose cell centres are the S×S
+  // samples (kept), then 9S×9S, … — until the estimate meets the tolerance or the pixel has
+  // adaptive_samples(pixel_pattern, S, max_refinements) samples (the cap). The stopping rule
+  // reads the pixel's own samples only: any thread count, band or tile gives the same bits.
+  // 0: the fixed S×S grid (no refinement).
   double pixel_tolerance = 0.0;
   int max_refinements = 0;  // adaptive_samples(pixel_pattern, S, max_refinements) at the cap
   PixelPattern pixel_pattern = PixelPattern::sobol;
   // The two-level estimate of adaptive sampling with reference lighting (`render.pixel_tolerance`
   // with shading.accuracy reference; README, "One error budget per pixel"): every sample is shaded
   // by the fast rules (shading.sky_order, sun_order: FrameLighting's nodes), and the pixel is
-  // corrected by the mean of (reference − fast) over the samples of one level of its nested grid
-  // (the S×S grid, or 3S×3S where needed), the reference at shading.tolerance. The pixel's expected
-  // value is the reference's; pixel_error bounds the fast level's pixel integral, lighting_error
-  // the correction (kPixelErrorStandardErrors standard errors of its mean + the reference's own
-  // estimates), and each pixel is refined (the fast level or the correction's, whichever misses
-  // its share; the correction up to kMaxCorrectionRefinements) until pixel_error +
+  // corrected by the mean of (reference − fast) over one level of its samples (the Sobol'
+  // pattern's first sobol_correction_samples(l); the grid's S×S, or 3S×3S where needed), the
+  // reference at shading.tolerance. The pixel's expected value is the reference's; pixel_error
+  // bounds the fast level's pixel integral, lighting_error the correction
+  // (kPixelErrorStandardErrors standard errors of its mean + the reference's own estimates), and
+  // each pixel is refined (the fast level or the correction's, whichever misses its share; the
+  // correction up to kMaxSobolCorrectionLevel or kMaxCorrectionRefinements) until pixel_error +
   // lighting_error ≤ pixel_tolerance × its largest channel.
   bool lighting_correction = false;
   // Mastin's adaptive anti-aliasing (`render.mastin_antialiasing`; Mastin, Watterberg & Mareda
@@ -205,10 +208,11 @@ struct RenderedImage {
   // pixel), per channel, as a bound: kPixelErrorStandardErrors standard errors of the pixel's
   // mean — of the S² samples of the fixed grid taken as independent (pixel_standard_error; 0
   // with one sample, where nothing estimates it), or after a refinement to n×n samples the
-  // spread of the nine interleaved (n/3)×(n/3) grids' means (each a stratified estimate).
+  // spread of the nine interleaved (n/3)×(n/3) grids' means (each a stratified estimate); on the
+  // Sobol' pattern the spread of its kPixelReplicates replicates' means.
   std::vector<Vec3> pixel_error;
   // Adaptive sampling only (RenderJob::pixel_tolerance > 0), else empty: the samples behind each
-  // pixel ((S·3^r)² after r refinements).
+  // pixel (adaptive_samples after r refinements).
   std::vector<double> pixel_samples;
   // RenderJob::keep_samples only, else empty: the radiance of every sample of the band's S×S
   // grid, row-major over its (height·S) × (width·S) samples (sample (c, r) of the band sits at
