@@ -165,8 +165,8 @@ TEST_CASE(
         3 * 18 * 18 * corrected);
   CHECK(refinement_item((std::string(grid) + R"(, "max_samples_per_pixel": 36)").c_str()) ==
         3 * 6 * 6 * corrected);
-  CHECK(refinement_item((std::string(grid) + R"(, "max_samples_per_pixel": 36)").c_str(),
-                        "fast") == 3 * 6 * 6 * per_sample);
+  CHECK(refinement_item((std::string(grid) + R"(, "max_samples_per_pixel": 36)").c_str(), "fast") ==
+        3 * 6 * 6 * per_sample);
   // The Sobol' pattern (the default): its cap, 256 for S = 2.
   CHECK(refinement_item(R"(, "pixel_tolerance": 0.01)") == 3 * 256 * corrected);
   CHECK(refinement_item("") == 0.0);  // fixed samples: no refinement

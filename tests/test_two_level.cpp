@@ -202,7 +202,8 @@ TEST_CASE("two-level: the correction stops at the 3S x 3S grid (kMaxCorrectionRe
   CHECK(image.corrected_samples <= 40 * sea);
 }
 
-TEST_CASE("two-level (Sobol'): each level's samples lead the next's, each lit by the reference once") {
+TEST_CASE(
+    "two-level (Sobol'): each level's samples lead the next's, each lit by the reference once") {
   // A coarse cheap level (one node) leaves wide corrections, so many pixels refine theirs to
   // level 3, the first 32 samples. Kept from level to level, a pixel lights at most 32 of its sea
   // samples by the reference (lit again at each level it would be 4 + 8 + 16 + 32).
