@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "raster/pixel_pattern.h"
+#include "waves/random.h"
 
 using namespace oceanref;
 
@@ -76,6 +77,15 @@ TEST_CASE("pixel pattern: every scrambled replicate is a (0,m,2)-net, block afte
       }
     }
     for (const auto& p : points) REQUIRE((p[0] > 0.0 && p[0] < 1.0 && p[1] > 0.0 && p[1] < 1.0));
+  }
+  // A point is the centre of its scrambled 2⁻³² cell, each coordinate scrambled by its own key:
+  // point 5 of replicate 3 of pixel (17, 5), digit by digit.
+  const std::uint64_t key = pixel_replicate_key(17, 5, 3);
+  const auto p = scrambled_sobol_point(key, 5);
+  for (int d = 0; d < 2; ++d) {
+    const std::uint32_t x =
+        owen_scrambled(sobol_coordinate(d, 5), mix64(key ^ static_cast<std::uint64_t>(d + 1)));
+    CHECK(p[static_cast<std::size_t>(d)] == (static_cast<double>(x) + 0.5) / 4294967296.0);
   }
   // The scramble is a bijection of [0, 2³²) that keeps the nets: a key changes the points.
   CHECK(scrambled_sobol_point(pixel_replicate_key(0, 0, 0), 3) !=
